@@ -1,0 +1,324 @@
+/*
+ * bodt.h -- the public C API of libbodt, a tetrahedral mesh improver.
+ *
+ * libbodt takes a tetrahedral mesh as plain arrays (points, tets, optional
+ * region ids, boundary-face markers and fixed vertices), improves it in place
+ * through an opaque handle, and gives the arrays back.  The header is plain
+ * C99; it is the only header you need.
+ *
+ * Conventions that hold for every function below:
+ *  - Every function returns an int status: BODT_OK (0) or a negative
+ *    bodt_status code.  bodt_status_string() names a code;
+ *    bodt_mesh_last_error() gives a message naming the offending entity.
+ *  - A call that fails leaves the mesh exactly as it was.
+ *  - No C++ exception ever leaves the library.  There is no global mutable
+ *    state: different handles may be used from different threads at once;
+ *    one handle must not be used from two threads at the same time.
+ *  - Indices (vertices, tets) are 0- or 1-based, as chosen by the caller in
+ *    bodt_mesh_create(); every index the library takes or gives, in arrays
+ *    and in messages, uses that base.
+ *  - Output arrays are caller-allocated; each getter takes the array's
+ *    capacity in elements and refuses (BODT_ERR_INVALID_ARGUMENT) a capacity
+ *    that is too small.
+ *  - Structs that may grow start with a size field: set it to sizeof(struct)
+ *    before the call; the library fills only what fits in that size.
+ */
+#ifndef BODT_H
+#define BODT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Only the library's own build marks symbols for export; consumers see plain
+ * declarations (which keeps the header parseable by cffi after cc -E). */
+#if defined(BODT_BUILDING_LIBRARY) && defined(__GNUC__)
+#define BODT_API __attribute__((visibility("default")))
+#else
+#define BODT_API
+#endif
+
+/* ---------------------------------------------------------------- version */
+
+#define BODT_VERSION_MAJOR 0
+#define BODT_VERSION_MINOR 1
+#define BODT_VERSION_PATCH 0
+/* MAJOR * 10000 + MINOR * 100 + PATCH, comparable with bodt_version_number() */
+#define BODT_VERSION_NUMBER 100
+
+/* The version of the library actually loaded, e.g. "0.1.0". */
+BODT_API const char *bodt_version_string(void);
+/* Same as BODT_VERSION_NUMBER, for the loaded library. */
+BODT_API int bodt_version_number(void);
+
+/* ----------------------------------------------------------------- status */
+
+enum bodt_status {
+    BODT_OK = 0,
+    BODT_ERR_INVALID_ARGUMENT = -1, /* NULL pointer, bad count, bad key ...  */
+    BODT_ERR_BAD_MESH = -2,         /* the mesh data is not a valid mesh    */
+    BODT_ERR_OUT_OF_MEMORY = -3,
+    BODT_ERR_WRONG_STATE = -4,      /* call not valid for this mesh now     */
+    BODT_ERR_NUMERIC = -5,          /* a computation failed (NaN, ...)      */
+    BODT_ERR_IO = -6,               /* file missing, unreadable, malformed  */
+    BODT_ERR_CANCELLED = -7,        /* the bodt_run callback asked to stop  */
+    BODT_ERR_UNSUPPORTED = -8       /* format, mode or feature not built in */
+};
+
+/* A static, human-readable name for a status code ("invalid argument"). */
+BODT_API const char *bodt_status_string(int status);
+
+/* ------------------------------------------------------------ mesh handle */
+
+typedef struct bodt_mesh bodt_mesh;
+
+/* Flags for bodt_mesh_create_ex(). */
+enum bodt_create_flag {
+    BODT_CREATE_DEFAULT = 0,
+    /* Accept inverted tets (for untangling modes); zero-volume tets are
+     * still refused. */
+    BODT_CREATE_ACCEPT_INVERTED = 1
+};
+
+/*
+ * Create a mesh from caller arrays, which are copied.
+ *   nverts      number of vertices (> 0)
+ *   xyz         3 * nverts coordinates, x0 y0 z0 x1 y1 z1 ...
+ *   ntets       number of tets (> 0)
+ *   tets        4 * ntets vertex indices in base index_base
+ *   index_base  0 (C, Python) or 1 (Fortran)
+ *   mesh        receives the handle, or NULL on failure
+ *
+ * The input is validated: finite coordinates, indices in range and distinct
+ * within a tet, no duplicate tets, no face shared by more than two tets, no
+ * two tets on the same side of a shared face, a manifold boundary surface, no
+ * zero-volume tets and (without BODT_CREATE_ACCEPT_INVERTED) no inverted tet.
+ * A mesh whose tets are all negatively oriented (the convention of some
+ * tools) is not inverted: its orientation is detected, the mesh is handled
+ * internally with positive orientation, and output tets come back in the
+ * caller's convention.  The convention is the orientation of the majority of
+ * the tets.  Vertices used by no tet are kept and counted in bodt_quality.
+ *
+ * On failure no handle exists; the message is given by
+ * bodt_mesh_last_error(NULL) on the same thread.
+ */
+BODT_API int bodt_mesh_create(int32_t nverts, const double *xyz, int32_t ntets,
+                              const int32_t *tets, int index_base,
+                              bodt_mesh **mesh);
+/* bodt_mesh_create() with bodt_create_flag bits. */
+BODT_API int bodt_mesh_create_ex(int32_t nverts, const double *xyz,
+                                 int32_t ntets, const int32_t *tets,
+                                 int index_base, uint32_t flags,
+                                 bodt_mesh **mesh);
+/* Free a handle; NULL is ignored. */
+BODT_API void bodt_mesh_destroy(bodt_mesh *mesh);
+
+/*
+ * The message of the last failed call on this handle ("tet 17 uses vertex
+ * 1200, but the mesh has 1000 vertices"), or "" if the last call succeeded.
+ * With mesh == NULL: the message of the last failed bodt_mesh_create* or
+ * bodt_mesh_read on the calling thread.  The string stays valid until the
+ * next call on the same handle (or thread, for NULL).
+ */
+BODT_API const char *bodt_mesh_last_error(const bodt_mesh *mesh);
+
+/* -------------------------------------------------- optional mesh data */
+
+/* One region (material) id per tet; default 0.  Faces between tets of
+ * different regions are interfaces, reported with the boundary faces. */
+BODT_API int bodt_mesh_set_regions(bodt_mesh *mesh, const int32_t *region_ids);
+
+/*
+ * Give markers to faces of the mesh: 3 * nfaces vertex indices and nfaces
+ * markers (markers may be NULL: every listed face gets 1).  Each triangle
+ * must be a face of the mesh (a boundary face, or an interior face, which
+ * then becomes a marked internal surface).  Replaces earlier markers; faces
+ * not listed have marker 0.
+ */
+BODT_API int bodt_mesh_set_boundary_faces(bodt_mesh *mesh, int32_t nfaces,
+                                          const int32_t *triangles,
+                                          const int32_t *markers);
+
+/* Vertices that no mode may move.  Replaces an earlier list. */
+BODT_API int bodt_mesh_set_fixed_vertices(bodt_mesh *mesh, int32_t nfixed,
+                                          const int32_t *vertices);
+
+/* ---------------------------------------------------------------- getters */
+
+/*
+ * Counts.  Any pointer may be NULL.  Boundary faces are the faces of one tet,
+ * plus the faces between tets of different regions, plus marked interior
+ * faces.
+ */
+BODT_API int bodt_mesh_get_counts(const bodt_mesh *mesh, int32_t *nverts,
+                                  int32_t *ntets, int32_t *nboundary_faces);
+
+/* 3 * nverts coordinates. */
+BODT_API int bodt_mesh_get_vertices(const bodt_mesh *mesh, double *xyz,
+                                    size_t capacity);
+/* 4 * ntets vertex indices, in the caller's base and orientation. */
+BODT_API int bodt_mesh_get_tets(const bodt_mesh *mesh, int32_t *tets,
+                                size_t capacity);
+/* ntets region ids. */
+BODT_API int bodt_mesh_get_regions(const bodt_mesh *mesh, int32_t *region_ids,
+                                   size_t capacity);
+/*
+ * 3 * nboundary_faces vertex indices and nboundary_faces markers (either may
+ * be NULL; capacity counts faces).  Faces on the domain boundary are
+ * oriented with their normal (right-hand rule) pointing out of the domain;
+ * interior faces point out of the tet with the smaller region id, or out of
+ * the tet with the smaller index in equal regions.  Listed in a fixed order:
+ * sorted by their lowest, then middle, then highest vertex index.
+ */
+BODT_API int bodt_mesh_get_boundary_faces(const bodt_mesh *mesh,
+                                          int32_t *triangles,
+                                          int32_t *markers, size_t capacity);
+/* nverts flags: 1 where the vertex is fixed by the caller, else 0. */
+BODT_API int bodt_mesh_get_fixed_vertices(const bodt_mesh *mesh,
+                                          int32_t *is_fixed, size_t capacity);
+
+/* ---------------------------------------------------------------- quality */
+
+/*
+ * Histogram bins of dihedral angles, in degrees: bin i counts the angles in
+ * [BODT_DIHEDRAL_BIN_EDGES[i], BODT_DIHEDRAL_BIN_EDGES[i+1]), the last bin
+ * includes 180.  Edges: 0 5 10 15 20 25 30 40 50 60 70 80 90 100 110 120 130
+ * 140 150 160 165 170 175 180 (fine at both ends, where bad tets live).
+ */
+#define BODT_DIHEDRAL_BINS 23
+BODT_API int bodt_dihedral_bin_edges(double *edges, size_t capacity);
+
+typedef struct bodt_quality {
+    size_t size;                 /* set to sizeof(bodt_quality) */
+    int32_t num_vertices;        /* all vertices, used or not */
+    int32_t num_tets;
+    int32_t num_boundary_faces;
+    int32_t num_unused_vertices; /* vertices in no tet */
+    int32_t num_inverted;        /* tets with signed volume <= 0 */
+    int32_t reserved0;
+    /* Dihedral angles in degrees.  An inverted or zero-volume tet counts as
+     * having a 0 and a 180 degree angle. */
+    double min_dihedral;
+    double max_dihedral;
+    double mean_dihedral;
+    /* Stretch, 6 sqrt(6) V / (sum of face areas * longest edge): 1 for the
+     * regular tet, 0 for a flat one, negative for an inverted one (paper
+     * 001 eq. 3.1, paper 002 eq. 3.1). */
+    double min_stretch;
+    double mean_stretch;
+    double volume;               /* sum of signed volumes */
+    int64_t dihedral_histogram[BODT_DIHEDRAL_BINS];
+} bodt_quality;
+
+BODT_API int bodt_mesh_quality(const bodt_mesh *mesh, bodt_quality *quality);
+
+/* Per-tet measures for bodt_mesh_tet_quality(). */
+enum bodt_measure {
+    BODT_MEASURE_MIN_DIHEDRAL = 1, /* degrees; 0 for inverted tets   */
+    BODT_MEASURE_MAX_DIHEDRAL = 2, /* degrees; 180 for inverted tets */
+    BODT_MEASURE_STRETCH = 3,
+    BODT_MEASURE_VOLUME = 4        /* signed; > 0 for a valid tet    */
+};
+
+/* ntets values of one bodt_measure, in tet order. */
+BODT_API int bodt_mesh_tet_quality(const bodt_mesh *mesh, int measure,
+                                   double *values, size_t capacity);
+
+/* ------------------------------------------------------- modes and params */
+
+enum bodt_mode {
+    /* Guarded Laplacian smoothing: each interior vertex moves towards the
+     * mean of its neighbours. */
+    BODT_MODE_LAPLACE = 1
+};
+
+BODT_API int bodt_set_mode(bodt_mesh *mesh, int mode);
+BODT_API int bodt_get_mode(const bodt_mesh *mesh, int *mode);
+
+/*
+ * Parameter keys.  Each key has one type: use the _int or _double setter and
+ * getter that matches it (the other is refused).
+ */
+enum bodt_param {
+    /* double, default 1e-6: bodt_run stops when the largest move of a step
+     * is below this fraction of the bounding-box diagonal. */
+    BODT_PARAM_TOLERANCE = 1,
+    /* int, default 4: how many times a rejected move is halved and tried
+     * again before the vertex is left where it is. */
+    BODT_PARAM_BACKTRACK_STEPS = 2,
+    /* double, default 1e-3: the guard.  A move is refused if a tet it
+     * touches ends with stretch below min(this, that tet's stretch before the
+     * move): moves never create inverted, flat or near-flat tets. */
+    BODT_PARAM_MIN_STRETCH = 3,
+    /* int 0/1, default 1: also refuse a move that lowers the smallest
+     * stretch among the tets the vertex touches, so no step makes the worst
+     * tet of the mesh worse.  0 lets a mode move as its formula says. */
+    BODT_PARAM_NEVER_WORSE = 4
+};
+
+BODT_API int bodt_set_param_int(bodt_mesh *mesh, int key, int32_t value);
+BODT_API int bodt_set_param_double(bodt_mesh *mesh, int key, double value);
+BODT_API int bodt_get_param_int(const bodt_mesh *mesh, int key,
+                                int32_t *value);
+BODT_API int bodt_get_param_double(const bodt_mesh *mesh, int key,
+                                   double *value);
+
+/* ---------------------------------------------------------- improvement */
+
+typedef struct bodt_step_report {
+    size_t size;            /* set to sizeof(bodt_step_report) */
+    int32_t step;           /* 1 for the first step on this handle, ...  */
+    int32_t vertices_moved;
+    int32_t moves_rejected; /* vertices whose every trial move was refused */
+    int32_t moves_shortened;/* vertices moved by a halved step            */
+    double max_move;        /* largest displacement, in mesh units        */
+    double min_dihedral;    /* after the step, degrees                    */
+    double max_dihedral;
+    double min_stretch;
+} bodt_step_report;
+
+/* One improvement sweep in the current mode.  report may be NULL. */
+BODT_API int bodt_step(bodt_mesh *mesh, bodt_step_report *report);
+
+/*
+ * Called after each step of bodt_run with its report; return 0 to go on,
+ * anything else to stop (bodt_run then returns BODT_ERR_CANCELLED, and the
+ * mesh keeps the steps done so far, each of them complete).
+ */
+typedef int (*bodt_step_callback)(const bodt_step_report *report,
+                                  void *user_data);
+
+/* Steps until the largest move is below BODT_PARAM_TOLERANCE (converged) or
+ * max_steps were done.  callback may be NULL. */
+BODT_API int bodt_run(bodt_mesh *mesh, int32_t max_steps,
+                      bodt_step_callback callback, void *user_data);
+
+/* ----------------------------------------------------------------- files */
+
+/*
+ * Read a mesh from a file; the format is chosen by the extension:
+ *   .mesh          Medit ASCII: Vertices, Tetrahedra (ref = region id),
+ *                  Triangles (ref = marker), RequiredVertices and Corners
+ *                  (become fixed vertices); other known sections are skipped.
+ *   .node / .ele   TetGen (give either; the other and an optional .face with
+ *                  markers are found beside it).  0- and 1-based files.
+ * The handle's index base is 0.  On failure, bodt_mesh_last_error(NULL)
+ * says why, with the file's line number.
+ */
+BODT_API int bodt_mesh_read(const char *path, bodt_mesh **mesh);
+/* bodt_mesh_read() with bodt_create_flag bits. */
+BODT_API int bodt_mesh_read_ex(const char *path, uint32_t flags,
+                               bodt_mesh **mesh);
+
+/* Write to a file, format by extension as for bodt_mesh_read (a TetGen path
+ * writes .node, .ele and .face). */
+BODT_API int bodt_mesh_write(const bodt_mesh *mesh, const char *path);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BODT_H */

@@ -1,0 +1,469 @@
+// The C API: thin wrappers that check arguments, call the core, and turn
+// every exception into a status code and a message.  Nothing here throws.
+#include "bodt.h"
+
+#include "common/error.hpp"
+#include "io/mesh_io.hpp"
+#include "mesh/mesh_builder.hpp"
+#include "pipeline/improver.hpp"
+#include "quality/mesh_quality.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <new>
+#include <string>
+
+struct bodt_mesh {
+    bodt::TetMesh mesh;
+    bodt::BoundarySurface surface;
+    bodt::Improver improver;
+    int index_base = 0;
+    bool flipped = false;
+    mutable std::string last_error;
+};
+
+namespace {
+
+using bodt::Error;
+
+// Message of the last failed creation (or call on a NULL handle) on this
+// thread: per-thread, so threads never share it.
+thread_local std::string t_thread_error;
+
+std::string& error_slot(const bodt_mesh* m) { return m ? m->last_error : t_thread_error; }
+
+// Runs `f`, translating exceptions; the message goes to the handle (or to the
+// thread's slot when there is no handle yet).
+template <class F>
+int guarded(const bodt_mesh* m, F&& f) {
+    std::string& slot = error_slot(m);
+    try {
+        f();
+        slot.clear();
+        return BODT_OK;
+    } catch (const Error& e) {
+        slot = e.what();
+        return e.status();
+    } catch (const std::bad_alloc&) {
+        slot = "out of memory";
+        return BODT_ERR_OUT_OF_MEMORY;
+    } catch (const std::exception& e) {
+        slot = std::string("internal error: ") + e.what();
+        return BODT_ERR_NUMERIC;
+    } catch (...) {
+        slot = "internal error";
+        return BODT_ERR_NUMERIC;
+    }
+}
+
+// For functions taking a handle: refuse NULL before anything else.
+template <class F>
+int with_mesh(const bodt_mesh* m, F&& f) {
+    if (!m) {
+        t_thread_error = "mesh is NULL";
+        return BODT_ERR_INVALID_ARGUMENT;
+    }
+    return guarded(m, std::forward<F>(f));
+}
+
+void require(bool ok, const char* message) {
+    if (!ok) throw Error(BODT_ERR_INVALID_ARGUMENT, message);
+}
+
+void require_capacity(size_t capacity, size_t needed, const char* what) {
+    if (capacity < needed)
+        throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(what) + " needs capacity " + std::to_string(needed) +
+                                                   ", got " + std::to_string(capacity));
+}
+
+// Copies `full` into a caller struct of `size` bytes whose first member is
+// that size: the caller gets what fits, the rest is zeroed.
+template <class T>
+void fill_sized(T* out, const T& full) {
+    require(out != nullptr, "output struct is NULL");
+    const size_t size = out->size;
+    require(size >= sizeof(size_t), "set the struct's size field to sizeof(struct) before the call");
+    std::memset(static_cast<void*>(out), 0, size);
+    std::memcpy(static_cast<void*>(out), &full, std::min(size, sizeof(T)));
+    out->size = size;
+}
+
+bodt_mesh* make_handle(const bodt::MeshArrays& arrays) {
+    bodt::BuiltMesh built = bodt::build_mesh(arrays);
+    auto* h = new bodt_mesh;
+    h->mesh = std::move(built.mesh);
+    h->surface = std::move(built.surface);
+    h->index_base = arrays.index_base;
+    h->flipped = built.flipped;
+    return h;
+}
+
+// True when some tet has the three vertices of `k`.
+bool is_mesh_face(const bodt::TetMesh& mesh, const bodt::FaceKey& k) {
+    for (const int32_t* t = mesh.star_begin(k.v[0]); t != mesh.star_end(k.v[0]); ++t) {
+        const bodt::Tet& q = mesh.tets[*t];
+        const auto has = [&q](int32_t v) { return std::find(q.begin(), q.end(), v) != q.end(); };
+        if (has(k.v[1]) && has(k.v[2])) return true;
+    }
+    return false;
+}
+
+void apply_face_markers(bodt_mesh* h, int32_t nfaces, const int32_t* triangles, const int32_t* markers) {
+    require(nfaces >= 0, "nfaces must not be negative");
+    require(nfaces == 0 || triangles != nullptr, "triangles is NULL");
+    const bodt::TetMesh& mesh = h->mesh;
+    const int base = h->index_base;
+    decltype(h->mesh.face_markers) fresh;
+    for (int32_t f = 0; f < nfaces; ++f) {
+        int32_t v[3];
+        for (int k = 0; k < 3; ++k) {
+            v[k] = triangles[3 * static_cast<size_t>(f) + k];
+            bodt::check_vertex_index(v[k], mesh.num_vertices(), base, "triangle", f);
+            v[k] -= base;
+        }
+        if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
+            throw Error(BODT_ERR_INVALID_ARGUMENT, "triangle " + std::to_string(f + base) + " repeats a vertex");
+        const auto key = bodt::FaceKey::of(v[0], v[1], v[2]);
+        if (!is_mesh_face(mesh, key))
+            throw Error(BODT_ERR_INVALID_ARGUMENT, "triangle " + std::to_string(f + base) + " (" +
+                                                       std::to_string(v[0] + base) + ", " +
+                                                       std::to_string(v[1] + base) + ", " +
+                                                       std::to_string(v[2] + base) + ") is not a face of the mesh");
+        if (!fresh.emplace(key, markers ? markers[f] : 1).second)
+            throw Error(BODT_ERR_INVALID_ARGUMENT, "triangle " + std::to_string(f + base) + " is listed twice");
+    }
+    h->mesh.face_markers = std::move(fresh);
+    h->mesh.update_vertex_flags();
+}
+
+void apply_fixed(bodt_mesh* h, int32_t nfixed, const int32_t* vertices) {
+    require(nfixed >= 0, "nfixed must not be negative");
+    require(nfixed == 0 || vertices != nullptr, "vertices is NULL");
+    bodt::TetMesh& mesh = h->mesh;
+    for (int32_t k = 0; k < nfixed; ++k)
+        bodt::check_vertex_index(vertices[k], mesh.num_vertices(), h->index_base, "fixed vertex", k);
+    for (uint8_t& f : mesh.vflags) f &= static_cast<uint8_t>(~bodt::kFixed);
+    for (int32_t k = 0; k < nfixed; ++k) mesh.vflags[vertices[k] - h->index_base] |= bodt::kFixed;
+}
+
+void fill_step_report(const bodt::StepReport& r, bodt_step_report* out) {
+    bodt_step_report full{};
+    full.size = sizeof(full);
+    full.step = r.step;
+    full.vertices_moved = r.vertices_moved;
+    full.moves_rejected = r.moves_rejected;
+    full.moves_shortened = r.moves_shortened;
+    full.max_move = r.max_move;
+    full.min_dihedral = r.min_dihedral;
+    full.max_dihedral = r.max_dihedral;
+    full.min_stretch = r.min_stretch;
+    fill_sized(out, full);
+}
+
+bodt::MeshData to_mesh_data(const bodt_mesh* h) {
+    const bodt::TetMesh& mesh = h->mesh;
+    bodt::MeshData d;
+    d.xyz.reserve(mesh.points.size() * 3);
+    for (const bodt::Vec3& p : mesh.points) d.xyz.insert(d.xyz.end(), {p.x(), p.y(), p.z()});
+    d.tets.reserve(mesh.tets.size() * 4);
+    for (const bodt::Tet& t : mesh.tets) d.tets.insert(d.tets.end(), t.begin(), t.end());
+    d.regions = mesh.regions;
+    for (const bodt::SurfaceFace& f : mesh.surface_faces()) {
+        d.triangles.insert(d.triangles.end(), f.v.begin(), f.v.end());
+        d.tri_markers.push_back(f.marker);
+    }
+    for (int32_t v = 0; v < mesh.num_vertices(); ++v)
+        if (mesh.vflags[v] & bodt::kFixed) d.fixed.push_back(v);
+    return d;
+}
+
+bodt_mesh* from_mesh_data(const bodt::MeshData& d, uint32_t flags) {
+    if (d.xyz.size() / 3 > INT32_MAX || d.tets.size() / 4 > INT32_MAX)
+        throw Error(BODT_ERR_UNSUPPORTED, "the mesh has more than 2^31 - 1 vertices or tets");
+    bodt::MeshArrays arrays;
+    arrays.nverts = static_cast<int32_t>(d.xyz.size() / 3);
+    arrays.xyz = d.xyz.data();
+    arrays.ntets = static_cast<int32_t>(d.tets.size() / 4);
+    arrays.tets = d.tets.data();
+    arrays.flags = flags;
+    std::unique_ptr<bodt_mesh> h(make_handle(arrays));
+    if (!d.regions.empty()) {
+        h->mesh.regions = d.regions;
+        h->mesh.update_vertex_flags();
+    }
+    apply_face_markers(h.get(), static_cast<int32_t>(d.tri_markers.size()), d.triangles.data(), d.tri_markers.data());
+    apply_fixed(h.get(), static_cast<int32_t>(d.fixed.size()), d.fixed.data());
+    return h.release();
+}
+
+}  // namespace
+
+extern "C" {
+
+#define BODT_STR2(x) #x
+#define BODT_STR(x) BODT_STR2(x)
+const char* bodt_version_string(void) {
+    return BODT_STR(BODT_VERSION_MAJOR) "." BODT_STR(BODT_VERSION_MINOR) "." BODT_STR(BODT_VERSION_PATCH);
+}
+
+int bodt_version_number(void) { return BODT_VERSION_NUMBER; }
+
+const char* bodt_status_string(int status) {
+    switch (status) {
+        case BODT_OK: return "ok";
+        case BODT_ERR_INVALID_ARGUMENT: return "invalid argument";
+        case BODT_ERR_BAD_MESH: return "bad mesh";
+        case BODT_ERR_OUT_OF_MEMORY: return "out of memory";
+        case BODT_ERR_WRONG_STATE: return "wrong state";
+        case BODT_ERR_NUMERIC: return "numeric failure";
+        case BODT_ERR_IO: return "input/output error";
+        case BODT_ERR_CANCELLED: return "cancelled";
+        case BODT_ERR_UNSUPPORTED: return "unsupported";
+        default: return "unknown status";
+    }
+}
+
+int bodt_mesh_create(int32_t nverts, const double* xyz, int32_t ntets, const int32_t* tets, int index_base,
+                     bodt_mesh** mesh) {
+    return bodt_mesh_create_ex(nverts, xyz, ntets, tets, index_base, BODT_CREATE_DEFAULT, mesh);
+}
+
+int bodt_mesh_create_ex(int32_t nverts, const double* xyz, int32_t ntets, const int32_t* tets, int index_base,
+                        uint32_t flags, bodt_mesh** mesh) {
+    if (!mesh) {
+        t_thread_error = "mesh (the output pointer) is NULL";
+        return BODT_ERR_INVALID_ARGUMENT;
+    }
+    *mesh = nullptr;
+    bodt_mesh* created = nullptr;
+    const int status = guarded(nullptr, [&] {
+        bodt::MeshArrays arrays;
+        arrays.nverts = nverts;
+        arrays.xyz = xyz;
+        arrays.ntets = ntets;
+        arrays.tets = tets;
+        arrays.index_base = index_base;
+        arrays.flags = flags;
+        created = make_handle(arrays);
+    });
+    *mesh = created;
+    return status;
+}
+
+void bodt_mesh_destroy(bodt_mesh* mesh) { delete mesh; }
+
+const char* bodt_mesh_last_error(const bodt_mesh* mesh) { return error_slot(mesh).c_str(); }
+
+int bodt_mesh_set_regions(bodt_mesh* mesh, const int32_t* region_ids) {
+    return with_mesh(mesh, [&] {
+        require(region_ids != nullptr, "region_ids is NULL");
+        mesh->mesh.regions.assign(region_ids, region_ids + mesh->mesh.tets.size());
+        mesh->mesh.update_vertex_flags();
+    });
+}
+
+int bodt_mesh_set_boundary_faces(bodt_mesh* mesh, int32_t nfaces, const int32_t* triangles, const int32_t* markers) {
+    return with_mesh(mesh, [&] { apply_face_markers(mesh, nfaces, triangles, markers); });
+}
+
+int bodt_mesh_set_fixed_vertices(bodt_mesh* mesh, int32_t nfixed, const int32_t* vertices) {
+    return with_mesh(mesh, [&] { apply_fixed(mesh, nfixed, vertices); });
+}
+
+int bodt_mesh_get_counts(const bodt_mesh* mesh, int32_t* nverts, int32_t* ntets, int32_t* nboundary_faces) {
+    return with_mesh(mesh, [&] {
+        if (nverts) *nverts = mesh->mesh.num_vertices();
+        if (ntets) *ntets = mesh->mesh.num_tets();
+        if (nboundary_faces) *nboundary_faces = mesh->mesh.count_surface_faces();
+    });
+}
+
+int bodt_mesh_get_vertices(const bodt_mesh* mesh, double* xyz, size_t capacity) {
+    return with_mesh(mesh, [&] {
+        require(xyz != nullptr, "xyz is NULL");
+        const auto& pts = mesh->mesh.points;
+        require_capacity(capacity, 3 * pts.size(), "xyz");
+        for (size_t v = 0; v < pts.size(); ++v)
+            for (int k = 0; k < 3; ++k) xyz[3 * v + k] = pts[v][k];
+    });
+}
+
+int bodt_mesh_get_tets(const bodt_mesh* mesh, int32_t* tets, size_t capacity) {
+    return with_mesh(mesh, [&] {
+        require(tets != nullptr, "tets is NULL");
+        const auto& all = mesh->mesh.tets;
+        require_capacity(capacity, 4 * all.size(), "tets");
+        for (size_t t = 0; t < all.size(); ++t) {
+            bodt::Tet q = all[t];
+            if (mesh->flipped) std::swap(q[2], q[3]);
+            for (int k = 0; k < 4; ++k) tets[4 * t + k] = q[k] + mesh->index_base;
+        }
+    });
+}
+
+int bodt_mesh_get_regions(const bodt_mesh* mesh, int32_t* region_ids, size_t capacity) {
+    return with_mesh(mesh, [&] {
+        require(region_ids != nullptr, "region_ids is NULL");
+        const auto& r = mesh->mesh.regions;
+        require_capacity(capacity, r.size(), "region_ids");
+        std::copy(r.begin(), r.end(), region_ids);
+    });
+}
+
+int bodt_mesh_get_boundary_faces(const bodt_mesh* mesh, int32_t* triangles, int32_t* markers, size_t capacity) {
+    return with_mesh(mesh, [&] {
+        const auto faces = mesh->mesh.surface_faces();
+        require_capacity(capacity, faces.size(), "boundary faces");
+        for (size_t f = 0; f < faces.size(); ++f) {
+            if (triangles)
+                for (int k = 0; k < 3; ++k) triangles[3 * f + k] = faces[f].v[k] + mesh->index_base;
+            if (markers) markers[f] = faces[f].marker;
+        }
+    });
+}
+
+int bodt_mesh_get_fixed_vertices(const bodt_mesh* mesh, int32_t* is_fixed, size_t capacity) {
+    return with_mesh(mesh, [&] {
+        require(is_fixed != nullptr, "is_fixed is NULL");
+        const auto& flags = mesh->mesh.vflags;
+        require_capacity(capacity, flags.size(), "is_fixed");
+        for (size_t v = 0; v < flags.size(); ++v) is_fixed[v] = (flags[v] & bodt::kFixed) ? 1 : 0;
+    });
+}
+
+int bodt_dihedral_bin_edges(double* edges, size_t capacity) {
+    if (!edges || capacity < bodt::kDihedralBins + 1) return BODT_ERR_INVALID_ARGUMENT;
+    std::copy(std::begin(bodt::kDihedralBinEdges), std::end(bodt::kDihedralBinEdges), edges);
+    return BODT_OK;
+}
+
+int bodt_mesh_quality(const bodt_mesh* mesh, bodt_quality* quality) {
+    return with_mesh(mesh, [&] {
+        require(quality != nullptr, "quality is NULL");
+        const bodt::QualitySummary s = bodt::summarize_quality(mesh->mesh);
+        bodt_quality full{};
+        full.size = sizeof(full);
+        full.num_vertices = mesh->mesh.num_vertices();
+        full.num_tets = mesh->mesh.num_tets();
+        full.num_boundary_faces = mesh->mesh.count_surface_faces();
+        full.num_unused_vertices = s.num_unused_vertices;
+        full.num_inverted = s.num_inverted;
+        full.min_dihedral = s.min_dihedral;
+        full.max_dihedral = s.max_dihedral;
+        full.mean_dihedral = s.mean_dihedral;
+        full.min_stretch = s.min_stretch;
+        full.mean_stretch = s.mean_stretch;
+        full.volume = s.volume;
+        std::copy(s.histogram.begin(), s.histogram.end(), full.dihedral_histogram);
+        fill_sized(quality, full);
+    });
+}
+
+int bodt_mesh_tet_quality(const bodt_mesh* mesh, int measure, double* values, size_t capacity) {
+    return with_mesh(mesh, [&] {
+        require(values != nullptr, "values is NULL");
+        require_capacity(capacity, mesh->mesh.tets.size(), "values");
+        bodt::TetMeasure m;
+        switch (measure) {
+            case BODT_MEASURE_MIN_DIHEDRAL: m = bodt::TetMeasure::MinDihedral; break;
+            case BODT_MEASURE_MAX_DIHEDRAL: m = bodt::TetMeasure::MaxDihedral; break;
+            case BODT_MEASURE_STRETCH: m = bodt::TetMeasure::Stretch; break;
+            case BODT_MEASURE_VOLUME: m = bodt::TetMeasure::Volume; break;
+            default: throw Error(BODT_ERR_INVALID_ARGUMENT, "unknown measure " + std::to_string(measure));
+        }
+        std::vector<double> out;
+        bodt::tet_measures(mesh->mesh, m, out);
+        std::copy(out.begin(), out.end(), values);
+    });
+}
+
+int bodt_set_mode(bodt_mesh* mesh, int mode) {
+    return with_mesh(mesh, [&] { mesh->improver.set_mode(mode); });
+}
+
+int bodt_get_mode(const bodt_mesh* mesh, int* mode) {
+    return with_mesh(mesh, [&] {
+        require(mode != nullptr, "mode is NULL");
+        *mode = mesh->improver.mode();
+    });
+}
+
+int bodt_set_param_int(bodt_mesh* mesh, int key, int32_t value) {
+    return with_mesh(mesh, [&] { bodt::set_param_int(mesh->improver.params(), key, value); });
+}
+
+int bodt_set_param_double(bodt_mesh* mesh, int key, double value) {
+    return with_mesh(mesh, [&] { bodt::set_param_double(mesh->improver.params(), key, value); });
+}
+
+int bodt_get_param_int(const bodt_mesh* mesh, int key, int32_t* value) {
+    return with_mesh(mesh, [&] {
+        require(value != nullptr, "value is NULL");
+        *value = bodt::get_param_int(mesh->improver.params(), key);
+    });
+}
+
+int bodt_get_param_double(const bodt_mesh* mesh, int key, double* value) {
+    return with_mesh(mesh, [&] {
+        require(value != nullptr, "value is NULL");
+        *value = bodt::get_param_double(mesh->improver.params(), key);
+    });
+}
+
+int bodt_step(bodt_mesh* mesh, bodt_step_report* report) {
+    return with_mesh(mesh, [&] {
+        if (report) require(report->size >= sizeof(size_t), "set report->size to sizeof(bodt_step_report)");
+        const bodt::StepReport r = mesh->improver.step(mesh->mesh);
+        if (report) fill_step_report(r, report);
+    });
+}
+
+int bodt_run(bodt_mesh* mesh, int32_t max_steps, bodt_step_callback callback, void* user_data) {
+    return with_mesh(mesh, [&] {
+        require(max_steps > 0, "max_steps must be positive");
+        const double scale = mesh->mesh.bbox_diagonal();
+        for (int32_t k = 0; k < max_steps; ++k) {
+            const bodt::StepReport r = mesh->improver.step(mesh->mesh);
+            if (callback) {
+                bodt_step_report report{};
+                report.size = sizeof(report);
+                fill_step_report(r, &report);
+                if (callback(&report, user_data) != 0)
+                    throw Error(BODT_ERR_CANCELLED, "cancelled by the callback after step " + std::to_string(r.step));
+            }
+            if (r.max_move <= mesh->improver.params().tolerance * scale) break;
+        }
+    });
+}
+
+int bodt_mesh_read(const char* path, bodt_mesh** mesh) { return bodt_mesh_read_ex(path, BODT_CREATE_DEFAULT, mesh); }
+
+int bodt_mesh_read_ex(const char* path, uint32_t flags, bodt_mesh** mesh) {
+    if (!mesh) {
+        t_thread_error = "mesh (the output pointer) is NULL";
+        return BODT_ERR_INVALID_ARGUMENT;
+    }
+    *mesh = nullptr;
+    bodt_mesh* created = nullptr;
+    const int status = guarded(nullptr, [&] {
+        require(path != nullptr, "path is NULL");
+        const bodt::MeshData data = bodt::read_mesh_file(path);
+        try {
+            created = from_mesh_data(data, flags);
+        } catch (const Error& e) {
+            throw Error(e.status(), std::string(path) + ": " + e.what());
+        }
+    });
+    *mesh = created;
+    return status;
+}
+
+int bodt_mesh_write(const bodt_mesh* mesh, const char* path) {
+    return with_mesh(mesh, [&] {
+        require(path != nullptr, "path is NULL");
+        bodt::write_mesh_file(path, to_mesh_data(mesh));
+    });
+}
+
+}  // extern "C"

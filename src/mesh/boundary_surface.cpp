@@ -1,0 +1,132 @@
+#include "mesh/boundary_surface.hpp"
+
+#include "bodt.h"
+#include "common/error.hpp"
+
+#include <string>
+
+namespace bodt {
+
+namespace {
+
+struct OrientedFace {
+    std::array<int32_t, 3> v;
+};
+
+std::vector<OrientedFace> boundary_faces(const TetMesh& mesh) {
+    std::vector<OrientedFace> faces;
+    for (int32_t t = 0; t < mesh.num_tets(); ++t)
+        for (int i = 0; i < 4; ++i)
+            if (mesh.neighbors[t][i] < 0) {
+                const Tet& q = mesh.tets[t];
+                faces.push_back({{q[kFaceVertex[i][0]], q[kFaceVertex[i][1]], q[kFaceVertex[i][2]]}});
+            }
+    return faces;
+}
+
+// The link of a boundary vertex v is the set of directed edges (a -> b), one
+// for each boundary face (v, a, b).  The boundary is a manifold surface at v
+// exactly when these edges form a single cycle.
+void check_link(int32_t v, std::vector<std::pair<int32_t, int32_t>>& link, int base) {
+    const auto name = [base](int32_t x) { return std::to_string(x + base); };
+    std::sort(link.begin(), link.end());
+    for (size_t k = 1; k < link.size(); ++k)
+        if (link[k].first == link[k - 1].first)
+            throw Error(BODT_ERR_BAD_MESH, "the boundary is not a manifold surface at edge (" + name(v) + ", " +
+                                               name(link[k].first) + "): more than two boundary faces meet there");
+    // Follow the cycle from the first edge; it must come back after visiting all.
+    size_t steps = 0;
+    int32_t at = link[0].first;
+    do {
+        const auto it = std::lower_bound(link.begin(), link.end(), std::make_pair(at, INT32_MIN));
+        if (it == link.end() || it->first != at)
+            throw Error(BODT_ERR_BAD_MESH, "the boundary is not a closed manifold surface around vertex " + name(v));
+        at = it->second;
+        ++steps;
+    } while (at != link[0].first && steps <= link.size());
+    if (steps != link.size())
+        throw Error(BODT_ERR_BAD_MESH, "the boundary is not a manifold surface at vertex " + name(v) +
+                                           ": its boundary faces form more than one fan (the domain touches "
+                                           "itself there)");
+}
+
+}  // namespace
+
+void BoundarySurface::build(const TetMesh& mesh, int base) {
+    const auto faces = boundary_faces(mesh);
+    const int32_t nv = mesh.num_vertices();
+
+    // Vertex -> boundary faces, for the link check and for the growth order.
+    std::vector<int32_t> offset(static_cast<size_t>(nv) + 1, 0), incident;
+    for (const auto& f : faces)
+        for (int32_t v : f.v) ++offset[v + 1];
+    for (int32_t v = 0; v < nv; ++v) offset[v + 1] += offset[v];
+    incident.resize(faces.size() * 3);
+    {
+        std::vector<int32_t> fill(offset.begin(), offset.end() - 1);
+        for (int32_t f = 0; f < static_cast<int32_t>(faces.size()); ++f)
+            for (int32_t v : faces[f].v) incident[fill[v]++] = f;
+    }
+    std::vector<std::pair<int32_t, int32_t>> link;
+    for (int32_t v = 0; v < nv; ++v) {
+        if (offset[v] == offset[v + 1]) continue;
+        link.clear();
+        for (int32_t k = offset[v]; k < offset[v + 1]; ++k) {
+            const auto& f = faces[incident[k]].v;
+            const int r = f[0] == v ? 0 : (f[1] == v ? 1 : 2);
+            link.emplace_back(f[(r + 1) % 3], f[(r + 2) % 3]);
+        }
+        check_link(v, link, base);
+    }
+
+    surface_.clean();
+    to_tet_.clear();
+    from_tet_.assign(static_cast<size_t>(nv), -1);
+    for (int32_t v = 0; v < nv; ++v)
+        if (offset[v] != offset[v + 1]) {
+            from_tet_[v] = static_cast<int32_t>(surface_.add_vertex(SurfaceMesh::Point(0, 0, 0)).idx());
+            to_tet_.push_back(v);
+        }
+
+    // Add faces breadth-first across shared vertices, so each vertex's fan
+    // grows from one side and OpenMesh never has to re-link patches.
+    std::vector<char> added(faces.size(), 0);
+    std::vector<int32_t> queue;
+    for (int32_t seed = 0; seed < static_cast<int32_t>(faces.size()); ++seed) {
+        if (added[seed]) continue;
+        added[seed] = 1;
+        queue.assign(1, seed);
+        for (size_t head = 0; head < queue.size(); ++head) {
+            const auto& f = faces[queue[head]].v;
+            const auto fh = surface_.add_face(SurfaceMesh::VertexHandle(from_tet_[f[0]]),
+                                              SurfaceMesh::VertexHandle(from_tet_[f[1]]),
+                                              SurfaceMesh::VertexHandle(from_tet_[f[2]]));
+            if (!fh.is_valid())
+                throw Error(BODT_ERR_BAD_MESH, "the boundary face (" + std::to_string(f[0] + base) + ", " +
+                                                   std::to_string(f[1] + base) + ", " + std::to_string(f[2] + base) +
+                                                   ") does not fit a manifold boundary surface");
+            for (int32_t v : f)
+                for (int32_t k = offset[v]; k < offset[v + 1]; ++k)
+                    if (!added[incident[k]]) {
+                        added[incident[k]] = 1;
+                        queue.push_back(incident[k]);
+                    }
+        }
+    }
+}
+
+void BoundarySurface::one_ring(int32_t v, std::vector<int32_t>& ring) const {
+    ring.clear();
+    if (v < 0 || v >= static_cast<int32_t>(from_tet_.size()) || from_tet_[v] < 0) return;
+    const SurfaceMesh::VertexHandle vh(from_tet_[v]);
+    // For the outgoing halfedge h = (v -> y_i) of face (v, y_i, y_{i+1}), the
+    // next outgoing halfedge (v -> y_{i+1}) is opposite(prev(h)).
+    const auto start = surface_.halfedge_handle(vh);
+    auto h = start;
+    do {
+        ring.push_back(to_tet_[surface_.to_vertex_handle(h).idx()]);
+        h = surface_.opposite_halfedge_handle(surface_.prev_halfedge_handle(h));
+    } while (h != start && ring.size() <= surface_.n_vertices());
+}
+
+}  // namespace bodt

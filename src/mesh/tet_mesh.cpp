@@ -1,0 +1,153 @@
+#include "mesh/tet_mesh.hpp"
+
+#include "bodt.h"
+#include "common/error.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace bodt {
+
+FaceKey FaceKey::of(int32_t a, int32_t b, int32_t c) {
+    if (a > b) std::swap(a, b);
+    if (b > c) std::swap(b, c);
+    if (a > b) std::swap(a, b);
+    return {{a, b, c}};
+}
+
+namespace {
+
+std::array<int32_t, 3> face_of(const Tet& t, int i) {
+    return {t[kFaceVertex[i][0]], t[kFaceVertex[i][1]], t[kFaceVertex[i][2]]};
+}
+
+}  // namespace
+
+void TetMesh::build_incidence() {
+    const int32_t nv = num_vertices();
+    vt_offset.assign(static_cast<size_t>(nv) + 1, 0);
+    for (const Tet& t : tets)
+        for (int32_t v : t) ++vt_offset[v + 1];
+    for (int32_t v = 0; v < nv; ++v) vt_offset[v + 1] += vt_offset[v];
+    vt_tets.resize(tets.size() * 4);
+    std::vector<int32_t> fill(vt_offset.begin(), vt_offset.end() - 1);
+    for (int32_t t = 0; t < num_tets(); ++t)
+        for (int32_t v : tets[t]) vt_tets[fill[v]++] = t;
+}
+
+// Faces are matched through the incidence of their first vertex: for face i
+// of tet t, every other tet around that vertex that holds the face is a
+// neighbour.  Each tet pair is found from both sides, which also lets us see
+// a third tet on the same face.
+void TetMesh::build_neighbors(int base) {
+    const int32_t nt = num_tets();
+    neighbors.assign(tets.size(), Tet{-1, -1, -1, -1});
+    for (int32_t t = 0; t < nt; ++t) {
+        for (int i = 0; i < 4; ++i) {
+            if (neighbors[t][i] != -1) continue;
+            const auto f = face_of(tets[t], i);
+            int32_t found = -1;
+            int found_local = -1;
+            for (const int32_t* s = star_begin(f[0]); s != star_end(f[0]); ++s) {
+                if (*s == t) continue;
+                const Tet& q = tets[*s];
+                int hits = 0, missing = -1;
+                for (int k = 0; k < 4; ++k) {
+                    if (q[k] == f[0] || q[k] == f[1] || q[k] == f[2]) ++hits;
+                    else missing = k;
+                }
+                if (hits < 3) continue;
+                if (found != -1)
+                    throw Error(BODT_ERR_BAD_MESH,
+                                "face (" + std::to_string(f[0] + base) + ", " + std::to_string(f[1] + base) + ", " +
+                                    std::to_string(f[2] + base) + ") is shared by more than two tets: " +
+                                    std::to_string(t + base) + ", " + std::to_string(found + base) + " and " +
+                                    std::to_string(*s + base));
+                found = *s;
+                found_local = missing;
+            }
+            if (found == -1) continue;
+            const Tet& q = tets[found];
+            if (q[found_local] == tets[t][i])
+                throw Error(BODT_ERR_BAD_MESH, "tets " + std::to_string(t + base) + " and " +
+                                                   std::to_string(found + base) + " have the same vertices");
+            neighbors[t][i] = found;
+            neighbors[found][found_local] = t;
+        }
+    }
+}
+
+bool TetMesh::is_surface_face(int32_t t, int i) const {
+    const int32_t s = neighbors[t][i];
+    if (s < 0) return true;
+    if (regions[s] != regions[t]) return true;
+    if (face_markers.empty()) return false;
+    const auto f = face_of(tets[t], i);
+    return face_markers.count(FaceKey::of(f[0], f[1], f[2])) != 0;
+}
+
+// An interior surface face is listed once, from the side it points out of:
+// the tet with the smaller region id, or the smaller index in equal regions.
+bool TetMesh::is_listed_face(int32_t t, int i) const {
+    if (!is_surface_face(t, i)) return false;
+    const int32_t s = neighbors[t][i];
+    return s < 0 || regions[t] < regions[s] || (regions[t] == regions[s] && t < s);
+}
+
+void TetMesh::update_vertex_flags() {
+    const int32_t nv = num_vertices();
+    vflags.resize(static_cast<size_t>(nv), 0);
+    for (int32_t v = 0; v < nv; ++v) {
+        vflags[v] &= kFixed;
+        if (vt_offset[v] == vt_offset[v + 1]) vflags[v] |= kUnused;
+    }
+    for (int32_t t = 0; t < num_tets(); ++t) {
+        for (int i = 0; i < 4; ++i) {
+            if (!is_surface_face(t, i)) continue;
+            const uint8_t flag = neighbors[t][i] < 0 ? kOnBoundary : kOnInterface;
+            for (int k = 0; k < 3; ++k) vflags[tets[t][kFaceVertex[i][k]]] |= flag;
+        }
+    }
+}
+
+void TetMesh::build_topology(int base) {
+    build_incidence();
+    build_neighbors(base);
+    update_vertex_flags();
+}
+
+std::vector<SurfaceFace> TetMesh::surface_faces() const {
+    std::vector<SurfaceFace> out;
+    for (int32_t t = 0; t < num_tets(); ++t) {
+        for (int i = 0; i < 4; ++i) {
+            if (!is_listed_face(t, i)) continue;
+            const auto f = face_of(tets[t], i);
+            const auto it = face_markers.find(FaceKey::of(f[0], f[1], f[2]));
+            out.push_back({f, it == face_markers.end() ? 0 : it->second});
+        }
+    }
+    std::sort(out.begin(), out.end(), [](const SurfaceFace& a, const SurfaceFace& b) {
+        return FaceKey::of(a.v[0], a.v[1], a.v[2]) < FaceKey::of(b.v[0], b.v[1], b.v[2]);
+    });
+    return out;
+}
+
+int32_t TetMesh::count_surface_faces() const {
+    int32_t n = 0;
+    for (int32_t t = 0; t < num_tets(); ++t)
+        for (int i = 0; i < 4; ++i) n += is_listed_face(t, i);
+    return n;
+}
+
+double TetMesh::bbox_diagonal() const {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 hi = -lo;
+    for (int32_t v = 0; v < num_vertices(); ++v) {
+        if (vflags[v] & kUnused) continue;
+        lo = lo.cwiseMin(points[v]);
+        hi = hi.cwiseMax(points[v]);
+    }
+    return lo.x() <= hi.x() ? (hi - lo).norm() : 0.0;
+}
+
+}  // namespace bodt

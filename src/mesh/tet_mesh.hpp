@@ -1,0 +1,97 @@
+// The compact tetrahedral mesh at the heart of the library: flat arrays of
+// points and tets, vertex->tet incidence in CSR form, tet->tet face
+// neighbours, per-vertex flags and face markers.  Every tet is stored
+// positively oriented (an accepted inverted tet excepted); the caller's
+// convention is restored at the C API.
+#pragma once
+
+#include "quality/tet_geometry.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace bodt {
+
+using Tet = std::array<int32_t, 4>;
+
+// A face by its three vertex indices, sorted ascending.
+struct FaceKey {
+    std::array<int32_t, 3> v;
+    static FaceKey of(int32_t a, int32_t b, int32_t c);
+    bool operator==(const FaceKey& o) const { return v == o.v; }
+    bool operator<(const FaceKey& o) const { return v < o.v; }
+};
+
+struct FaceKeyHash {
+    size_t operator()(const FaceKey& k) const {
+        uint64_t h = static_cast<uint32_t>(k.v[0]);
+        h = h * 0x9E3779B97F4A7C15ull ^ static_cast<uint32_t>(k.v[1]);
+        h = h * 0x9E3779B97F4A7C15ull ^ static_cast<uint32_t>(k.v[2]);
+        return static_cast<size_t>(h ^ (h >> 29));
+    }
+};
+
+enum VertexFlag : uint8_t {
+    kOnBoundary = 1,   // on a face of one tet
+    kOnInterface = 2,  // on a face between regions or a marked interior face
+    kFixed = 4,        // fixed by the caller
+    kUnused = 8,       // in no tet
+};
+
+// A face of the mesh that the caller sees: boundary, interface or marked.
+struct SurfaceFace {
+    std::array<int32_t, 3> v;  // oriented as documented in bodt.h
+    int32_t marker;
+};
+
+class TetMesh {
+public:
+    std::vector<Vec3> points;
+    std::vector<Tet> tets;
+    std::vector<int32_t> regions;            // one per tet
+    std::vector<Tet> neighbors;              // across face i of tet t; -1 on the boundary
+    std::vector<int32_t> vt_offset, vt_tets; // CSR: tets of vertex v are vt_tets[vt_offset[v] .. vt_offset[v+1])
+    std::vector<uint8_t> vflags;
+    std::unordered_map<FaceKey, int32_t, FaceKeyHash> face_markers;
+
+    int32_t num_vertices() const { return static_cast<int32_t>(points.size()); }
+    int32_t num_tets() const { return static_cast<int32_t>(tets.size()); }
+
+    TetPoints tet_points(int32_t t) const {
+        const Tet& q = tets[t];
+        return {points[q[0]], points[q[1]], points[q[2]], points[q[3]]};
+    }
+    const int32_t* star_begin(int32_t v) const { return vt_tets.data() + vt_offset[v]; }
+    const int32_t* star_end(int32_t v) const { return vt_tets.data() + vt_offset[v + 1]; }
+
+    // Interior = may be moved by interior smoothing: used, not on the
+    // boundary or an interface, not fixed.
+    bool is_interior_free(int32_t v) const { return vflags[v] == 0; }
+
+    // Rebuild incidence, neighbours and vertex flags from points, tets,
+    // regions and markers.  Throws Error(BODT_ERR_BAD_MESH) with a message
+    // using index base `base` when the connectivity is not a valid mesh.
+    void build_topology(int base);
+
+    // Recompute the boundary, interface and unused bits of vflags (the fixed
+    // bit is kept), after regions or markers changed.
+    void update_vertex_flags();
+
+    // The faces the caller sees, in the documented order and orientation.
+    std::vector<SurfaceFace> surface_faces() const;
+    int32_t count_surface_faces() const;
+
+    // Axis-aligned bounding-box diagonal of the used vertices.
+    double bbox_diagonal() const;
+
+private:
+    void build_incidence();
+    void build_neighbors(int base);
+    bool is_surface_face(int32_t t, int i) const;
+    bool is_listed_face(int32_t t, int i) const;
+};
+
+}  // namespace bodt

@@ -1,0 +1,76 @@
+#include "pipeline/params.hpp"
+
+#include "bodt.h"
+#include "common/error.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace bodt {
+
+namespace {
+
+enum class Type { Int, Double };
+
+struct Info {
+    int key;
+    const char* name;
+    Type type;
+    double lo, hi;  // valid range, inclusive
+};
+
+constexpr Info kParams[] = {
+    {BODT_PARAM_TOLERANCE, "BODT_PARAM_TOLERANCE", Type::Double, 0.0, 1.0},
+    {BODT_PARAM_BACKTRACK_STEPS, "BODT_PARAM_BACKTRACK_STEPS", Type::Int, 0, 50},
+    {BODT_PARAM_MIN_STRETCH, "BODT_PARAM_MIN_STRETCH", Type::Double, 0.0, 0.5},
+    {BODT_PARAM_NEVER_WORSE, "BODT_PARAM_NEVER_WORSE", Type::Int, 0, 1},
+};
+
+const Info& lookup(int key, Type want) {
+    for (const Info& info : kParams) {
+        if (info.key != key) continue;
+        if (info.type != want)
+            throw Error(BODT_ERR_INVALID_ARGUMENT,
+                        std::string(info.name) + " is " + (info.type == Type::Int ? "an int" : "a double") +
+                            " parameter: use bodt_" + (want == Type::Int ? "set/get_param_double" : "set/get_param_int"));
+        return info;
+    }
+    throw Error(BODT_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key));
+}
+
+void check_range(const Info& info, double value) {
+    if (!(value >= info.lo && value <= info.hi))
+        throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(info.name) + " must be in [" + std::to_string(info.lo) +
+                                                   ", " + std::to_string(info.hi) + "], got " +
+                                                   std::to_string(value));
+}
+
+}  // namespace
+
+void set_param_int(Params& p, int key, int32_t value) {
+    check_range(lookup(key, Type::Int), value);
+    switch (key) {
+        case BODT_PARAM_BACKTRACK_STEPS: p.backtrack_steps = value; break;
+        case BODT_PARAM_NEVER_WORSE: p.never_worse = value; break;
+    }
+}
+
+void set_param_double(Params& p, int key, double value) {
+    check_range(lookup(key, Type::Double), value);
+    switch (key) {
+        case BODT_PARAM_TOLERANCE: p.tolerance = value; break;
+        case BODT_PARAM_MIN_STRETCH: p.min_stretch = value; break;
+    }
+}
+
+int32_t get_param_int(const Params& p, int key) {
+    lookup(key, Type::Int);
+    return key == BODT_PARAM_BACKTRACK_STEPS ? p.backtrack_steps : p.never_worse;
+}
+
+double get_param_double(const Params& p, int key) {
+    lookup(key, Type::Double);
+    return key == BODT_PARAM_TOLERANCE ? p.tolerance : p.min_stretch;
+}
+
+}  // namespace bodt

@@ -1,0 +1,22 @@
+// The tunable parameters of a mesh handle, keyed by the bodt_param enum.
+#pragma once
+
+#include <cstdint>
+
+namespace bodt {
+
+struct Params {
+    double tolerance = 1e-6;       // BODT_PARAM_TOLERANCE
+    int32_t backtrack_steps = 4;   // BODT_PARAM_BACKTRACK_STEPS
+    double min_stretch = 1e-3;     // BODT_PARAM_MIN_STRETCH
+    int32_t never_worse = 1;       // BODT_PARAM_NEVER_WORSE
+};
+
+// Each throws Error(BODT_ERR_INVALID_ARGUMENT) for an unknown key, a key of
+// the other type, or a value out of the key's range.
+void set_param_int(Params& p, int key, int32_t value);
+void set_param_double(Params& p, int key, double value);
+int32_t get_param_int(const Params& p, int key);
+double get_param_double(const Params& p, int key);
+
+}  // namespace bodt

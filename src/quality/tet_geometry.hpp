@@ -1,0 +1,107 @@
+// Geometry of one tetrahedron: signed volume with a certified sign, dihedral
+// angles and the stretch quality.  Header-only so the compiler can inline the
+// kernels into the smoothing sweeps.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace bodt {
+
+using Vec3 = Eigen::Vector3d;
+
+// Local vertex triples of the four faces, face i opposite vertex i, ordered so
+// that the right-hand normal points out of a positively oriented tet.
+inline constexpr int kFaceVertex[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+// The six edges (i, j) and the two faces (opposite k and l) that meet there.
+inline constexpr int kEdgeVertex[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+inline constexpr int kEdgeFaces[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
+
+// Sign of the orientation determinant 6V = (b-a) . ((c-a) x (d-a)), certified
+// by Shewchuk's static error bound for orient3d ("Adaptive precision
+// floating-point arithmetic", 1997, errboundA = (7 + 56 eps) eps): +1 or -1
+// when the sign of the exact determinant is known, 0 when round-off could
+// flip it.  A tet with sign 0 is treated as flat.
+struct Orientation {
+    double det6;  // six times the signed volume
+    int sign;
+};
+
+inline Orientation orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    const Vec3 u = b - a, v = c - a, w = d - a;
+    const double m1 = v.y() * w.z(), m2 = v.z() * w.y();
+    const double m3 = v.z() * w.x(), m4 = v.x() * w.z();
+    const double m5 = v.x() * w.y(), m6 = v.y() * w.x();
+    const double det = u.x() * (m1 - m2) + u.y() * (m3 - m4) + u.z() * (m5 - m6);
+    const double permanent = std::abs(u.x()) * (std::abs(m1) + std::abs(m2)) +
+                             std::abs(u.y()) * (std::abs(m3) + std::abs(m4)) +
+                             std::abs(u.z()) * (std::abs(m5) + std::abs(m6));
+    constexpr double eps = 1.1102230246251565e-16;  // 2^-53
+    constexpr double bound = (7.0 + 56.0 * eps) * eps;
+    const int sign = det > bound * permanent ? 1 : (det < -bound * permanent ? -1 : 0);
+    return {det, sign};
+}
+
+inline double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    return (b - a).dot((c - a).cross(d - a)) / 6.0;
+}
+
+using TetPoints = std::array<Vec3, 4>;
+
+// Stretch (papers 001 and 002, eq. 3.1): 6 sqrt(6) V / (sum of face areas *
+// longest edge).  1 for the regular tet, 0 when flat, negative when inverted.
+inline double stretch(const TetPoints& p) {
+    const double six_v = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
+    double area2 = 0.0;  // twice the total face area
+    for (const auto& f : kFaceVertex)
+        area2 += (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
+    double lmax2 = 0.0;
+    for (const auto& e : kEdgeVertex) lmax2 = std::max(lmax2, (p[e[1]] - p[e[0]]).squaredNorm());
+    const double denom = area2 * std::sqrt(lmax2);
+    // 6 sqrt(6) V / (A l) with V = six_v / 6 and A = area2 / 2.
+    return denom > 0.0 ? 2.0 * std::sqrt(6.0) * six_v / denom : 0.0;
+}
+
+// The six interior dihedral angles in degrees, in kEdgeVertex order.  The
+// angle at an edge is pi minus the angle between the outward normals of the
+// two faces that meet there.  Meaningful for positively oriented tets only.
+inline std::array<double, 6> dihedral_angles(const TetPoints& p) {
+    std::array<Vec3, 4> n;
+    for (int i = 0; i < 4; ++i) {
+        const auto& f = kFaceVertex[i];
+        n[i] = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]);
+    }
+    std::array<double, 6> out;
+    for (int e = 0; e < 6; ++e) {
+        const Vec3& na = n[kEdgeFaces[e][0]];
+        const Vec3& nb = n[kEdgeFaces[e][1]];
+        const double den = std::sqrt(na.squaredNorm() * nb.squaredNorm());
+        double c = den > 0.0 ? -na.dot(nb) / den : 1.0;
+        c = std::clamp(c, -1.0, 1.0);
+        out[e] = std::acos(c) * (180.0 / M_PI);
+    }
+    return out;
+}
+
+// Smallest and largest dihedral angle.  A tet that is not positively oriented
+// counts as the worst possible: 0 and 180 degrees (as the meshq yardstick).
+struct AngleRange {
+    double min, max;
+};
+
+inline AngleRange dihedral_range(const TetPoints& p, bool positive) {
+    if (!positive) return {0.0, 180.0};
+    const auto a = dihedral_angles(p);
+    double lo = a[0], hi = a[0];
+    for (int e = 1; e < 6; ++e) {
+        lo = std::min(lo, a[e]);
+        hi = std::max(hi, a[e]);
+    }
+    return {lo, hi};
+}
+
+}  // namespace bodt
