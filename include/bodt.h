@@ -304,9 +304,12 @@ BODT_API int bodt_run(bodt_mesh *mesh, int32_t max_steps,
  *                  Triangles (ref = marker), RequiredVertices and Corners
  *                  (become fixed vertices); other known sections are skipped.
  *   .node / .ele   TetGen (give either; the other and an optional .face with
- *                  markers are found beside it).  0- and 1-based files.
+ *                  markers are found beside it).  0- and 1-based files.  The
+ *                  format has no fixed vertices.
  * The handle's index base is 0.  On failure, bodt_mesh_last_error(NULL)
- * says why, with the file's line number.
+ * says why: BODT_ERR_IO for a file that cannot be read or parsed (with the
+ * line number), BODT_ERR_BAD_MESH for a parsed mesh that is not valid (with
+ * the entities in the file's own numbering).
  */
 BODT_API int bodt_mesh_read(const char *path, bodt_mesh **mesh);
 /* bodt_mesh_read() with bodt_create_flag bits. */

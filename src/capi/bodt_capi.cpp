@@ -178,23 +178,35 @@ bodt::MeshData to_mesh_data(const bodt_mesh* h) {
     return d;
 }
 
+// A handle for a mesh read from a file.  Problems with the mesh itself are
+// BODT_ERR_BAD_MESH, named in the file's own numbering; the handle then
+// counts from 0, as documented for bodt_mesh_read.
 bodt_mesh* from_mesh_data(const bodt::MeshData& d, uint32_t flags) {
     if (d.xyz.size() / 3 > INT32_MAX || d.tets.size() / 4 > INT32_MAX)
         throw Error(BODT_ERR_UNSUPPORTED, "the mesh has more than 2^31 - 1 vertices or tets");
+    if (d.tets.empty()) throw Error(BODT_ERR_BAD_MESH, "the file has no tets");
     bodt::MeshArrays arrays;
     arrays.nverts = static_cast<int32_t>(d.xyz.size() / 3);
     arrays.xyz = d.xyz.data();
     arrays.ntets = static_cast<int32_t>(d.tets.size() / 4);
     arrays.tets = d.tets.data();
+    arrays.index_base = d.base;
     arrays.flags = flags;
-    std::unique_ptr<bodt_mesh> h(make_handle(arrays));
-    if (!d.regions.empty()) {
-        h->mesh.regions = d.regions;
-        h->mesh.update_vertex_flags();
+    try {
+        std::unique_ptr<bodt_mesh> h(make_handle(arrays));
+        if (!d.regions.empty()) {
+            h->mesh.regions = d.regions;
+            h->mesh.update_vertex_flags();
+        }
+        apply_face_markers(h.get(), static_cast<int32_t>(d.tri_markers.size()), d.triangles.data(),
+                           d.tri_markers.data());
+        apply_fixed(h.get(), static_cast<int32_t>(d.fixed.size()), d.fixed.data());
+        h->index_base = 0;
+        return h.release();
+    } catch (const Error& e) {
+        if (e.status() == BODT_ERR_INVALID_ARGUMENT) throw Error(BODT_ERR_BAD_MESH, e.what());
+        throw;
     }
-    apply_face_markers(h.get(), static_cast<int32_t>(d.tri_markers.size()), d.triangles.data(), d.tri_markers.data());
-    apply_fixed(h.get(), static_cast<int32_t>(d.fixed.size()), d.fixed.data());
-    return h.release();
 }
 
 }  // namespace

@@ -4,6 +4,11 @@
 
 #ifdef BODT_WITH_TETGEN
 #include <tetgen.h>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdio>
 #endif
 
 namespace bodt_cli {
@@ -24,6 +29,43 @@ bool is_surface_path(const std::string& path) {
 
 #ifdef BODT_WITH_TETGEN
 
+namespace {
+
+// TetGen's file loaders print "Opening FILE." on stdout, which is ours:
+// send it to /dev/null while they run.
+class SilencedStdout {
+public:
+    SilencedStdout() {
+        std::fflush(stdout);
+        saved_ = dup(STDOUT_FILENO);
+        const int null = open("/dev/null", O_WRONLY);
+        if (null >= 0) {
+            dup2(null, STDOUT_FILENO);
+            close(null);
+        }
+    }
+    ~SilencedStdout() {
+        std::fflush(stdout);
+        if (saved_ >= 0) {
+            dup2(saved_, STDOUT_FILENO);
+            close(saved_);
+        }
+    }
+
+private:
+    int saved_;
+};
+
+bool load_surface(tetgenio& in, const std::string& ext, char* name) {
+    const SilencedStdout quiet;
+    if (ext == ".off") return in.load_off(name);
+    if (ext == ".stl") return in.load_stl(name);
+    if (ext == ".ply") return in.load_ply(name);
+    return in.load_poly(name);
+}
+
+}  // namespace
+
 int tetrahedralize_surface(const std::string& path, bodt_mesh** mesh, std::string& message) {
     *mesh = nullptr;
     const std::string ext = extension(path);
@@ -32,12 +74,7 @@ int tetrahedralize_surface(const std::string& path, bodt_mesh** mesh, std::strin
     std::vector<char> buffer(name.begin(), name.end());
     buffer.push_back('\0');
     tetgenio in, out;
-    bool loaded = false;
-    if (ext == ".off") loaded = in.load_off(buffer.data());
-    else if (ext == ".stl") loaded = in.load_stl(buffer.data());
-    else if (ext == ".ply") loaded = in.load_ply(buffer.data());
-    else loaded = in.load_poly(buffer.data());
-    if (!loaded) {
+    if (!load_surface(in, ext, buffer.data())) {
         message = "TetGen could not read the surface '" + path + "'";
         return BODT_ERR_IO;
     }

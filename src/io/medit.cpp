@@ -64,7 +64,7 @@ int32_t read_vertex(TextScanner& in, int64_t nverts, const char* what) {
     if (v < 1 || v > nverts)
         in.fail(std::string(what) + " " + std::to_string(v) + " is out of range: the file has " +
                 std::to_string(nverts) + " vertices (numbered from 1)");
-    return static_cast<int32_t>(v - 1);
+    return static_cast<int32_t>(v);
 }
 
 int32_t read_ref(TextScanner& in, const char* what) {
@@ -78,6 +78,7 @@ int32_t read_ref(TextScanner& in, const char* what) {
 MeshData read_medit(const std::string& path) {
     TextScanner in(path);
     MeshData d;
+    d.base = 1;
     int64_t nverts = -1;
     bool saw_tets = false;
     std::string_view token;
@@ -139,6 +140,7 @@ MeshData read_medit(const std::string& path) {
 }
 
 void write_medit(const std::string& path, const MeshData& d) {
+    const int shift = 1 - d.base;  // Medit counts from 1
     OutputFile out(path);
     FILE* o = out.get();
     const size_t nv = d.xyz.size() / 3, nt = d.tets.size() / 4, nf = d.tri_markers.size();
@@ -147,15 +149,15 @@ void write_medit(const std::string& path, const MeshData& d) {
         std::fprintf(o, "%.17g %.17g %.17g 0\n", d.xyz[3 * v], d.xyz[3 * v + 1], d.xyz[3 * v + 2]);
     std::fprintf(o, "\nTriangles\n%zu\n", nf);
     for (size_t k = 0; k < nf; ++k)
-        std::fprintf(o, "%d %d %d %d\n", d.triangles[3 * k] + 1, d.triangles[3 * k + 1] + 1, d.triangles[3 * k + 2] + 1,
-                     d.tri_markers[k]);
+        std::fprintf(o, "%d %d %d %d\n", d.triangles[3 * k] + shift, d.triangles[3 * k + 1] + shift,
+                     d.triangles[3 * k + 2] + shift, d.tri_markers[k]);
     std::fprintf(o, "\nTetrahedra\n%zu\n", nt);
     for (size_t t = 0; t < nt; ++t)
-        std::fprintf(o, "%d %d %d %d %d\n", d.tets[4 * t] + 1, d.tets[4 * t + 1] + 1, d.tets[4 * t + 2] + 1,
-                     d.tets[4 * t + 3] + 1, d.regions.empty() ? 0 : d.regions[t]);
+        std::fprintf(o, "%d %d %d %d %d\n", d.tets[4 * t] + shift, d.tets[4 * t + 1] + shift, d.tets[4 * t + 2] + shift,
+                     d.tets[4 * t + 3] + shift, d.regions.empty() ? 0 : d.regions[t]);
     if (!d.fixed.empty()) {
         std::fprintf(o, "\nRequiredVertices\n%zu\n", d.fixed.size());
-        for (int32_t v : d.fixed) std::fprintf(o, "%d\n", v + 1);
+        for (int32_t v : d.fixed) std::fprintf(o, "%d\n", v + shift);
     }
     std::fprintf(o, "\nEnd\n");
     out.close();

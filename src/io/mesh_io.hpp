@@ -9,8 +9,11 @@
 
 namespace bodt {
 
-// Plain arrays, 0-based.
+// Plain arrays.  Vertex indices count from `base`: readers keep the file's
+// numbering (Medit 1, TetGen 0 or 1), so messages about the mesh in a file
+// name what the file says.
 struct MeshData {
+    int base = 0;
     std::vector<double> xyz;           // 3 per vertex
     std::vector<int32_t> tets;         // 4 per tet
     std::vector<int32_t> regions;      // one per tet, or empty

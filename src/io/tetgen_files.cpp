@@ -4,7 +4,9 @@
 //   .ele    n 4 nattr,     then  i a b c d [attrs]    first attr -> region id
 //   .face   n nbm,         then  i a b c [marker]     (optional file)
 // Tets are read in the file's orientation; bodt_mesh_create detects a file
-// whose tets are all negatively oriented (Stellar's convention).
+// whose tets are all negatively oriented (Stellar's convention).  Written
+// files are 0-based.  The format has no notion of fixed vertices: they are
+// not written (use Medit's RequiredVertices to keep them).
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
 #include "io/text_scanner.hpp"
@@ -21,10 +23,11 @@ std::string stem_of(const std::string& path) {
     return path.substr(0, dot);
 }
 
+// A node number in the file's numbering, checked against the node count.
 int32_t read_index(TextScanner& in, int64_t base, int64_t count, const char* what) {
-    const int64_t v = in.read_int(what) - base;
-    if (v < 0 || v >= count)
-        in.fail(std::string(what) + " " + std::to_string(v + base) + " is out of range: the .node file has " +
+    const int64_t v = in.read_int(what);
+    if (v < base || v >= count + base)
+        in.fail(std::string(what) + " " + std::to_string(v) + " is out of range: the .node file has " +
                 std::to_string(count) + " nodes numbered from " + std::to_string(base));
     return static_cast<int32_t>(v);
 }
@@ -103,6 +106,7 @@ MeshData read_tetgen(const std::string& path) {
     const std::string stem = stem_of(path);
     MeshData d;
     const int64_t base = read_nodes(stem + ".node", d);
+    d.base = static_cast<int>(base);
     const int64_t nverts = static_cast<int64_t>(d.xyz.size() / 3);
     read_elements(stem + ".ele", base, nverts, d);
     if (std::ifstream(stem + ".face").good()) read_faces(stem + ".face", base, nverts, d);
@@ -112,6 +116,7 @@ MeshData read_tetgen(const std::string& path) {
 void write_tetgen(const std::string& path, const MeshData& d) {
     const std::string stem = stem_of(path);
     const size_t nv = d.xyz.size() / 3, nt = d.tets.size() / 4, nf = d.tri_markers.size();
+    const int shift = -d.base;  // written 0-based
     {
         OutputFile out(stem + ".node");
         std::fprintf(out.get(), "%zu 3 0 0\n", nv);
@@ -124,8 +129,8 @@ void write_tetgen(const std::string& path, const MeshData& d) {
         OutputFile out(stem + ".ele");
         std::fprintf(out.get(), "%zu 4 %d\n", nt, regions ? 1 : 0);
         for (size_t t = 0; t < nt; ++t) {
-            std::fprintf(out.get(), "%zu %d %d %d %d", t, d.tets[4 * t], d.tets[4 * t + 1], d.tets[4 * t + 2],
-                         d.tets[4 * t + 3]);
+            std::fprintf(out.get(), "%zu %d %d %d %d", t, d.tets[4 * t] + shift, d.tets[4 * t + 1] + shift,
+                         d.tets[4 * t + 2] + shift, d.tets[4 * t + 3] + shift);
             if (regions) std::fprintf(out.get(), " %d", d.regions[t]);
             std::fputc('\n', out.get());
         }
@@ -135,8 +140,8 @@ void write_tetgen(const std::string& path, const MeshData& d) {
         OutputFile out(stem + ".face");
         std::fprintf(out.get(), "%zu 1\n", nf);
         for (size_t f = 0; f < nf; ++f)
-            std::fprintf(out.get(), "%zu %d %d %d %d\n", f, d.triangles[3 * f], d.triangles[3 * f + 1],
-                         d.triangles[3 * f + 2], d.tri_markers[f]);
+            std::fprintf(out.get(), "%zu %d %d %d %d\n", f, d.triangles[3 * f] + shift, d.triangles[3 * f + 1] + shift,
+                         d.triangles[3 * f + 2] + shift, d.tri_markers[f]);
         out.close();
     }
 }

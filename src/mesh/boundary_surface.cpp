@@ -17,10 +17,7 @@ std::vector<OrientedFace> boundary_faces(const TetMesh& mesh) {
     std::vector<OrientedFace> faces;
     for (int32_t t = 0; t < mesh.num_tets(); ++t)
         for (int i = 0; i < 4; ++i)
-            if (mesh.neighbors[t][i] < 0) {
-                const Tet& q = mesh.tets[t];
-                faces.push_back({{q[kFaceVertex[i][0]], q[kFaceVertex[i][1]], q[kFaceVertex[i][2]]}});
-            }
+            if (mesh.neighbors[t][i] < 0) faces.push_back({mesh.outward_face(t, i)});
     return faces;
 }
 

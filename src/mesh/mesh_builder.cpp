@@ -155,6 +155,7 @@ BuiltMesh build_mesh(const MeshArrays& in) {
     normalise_orientation(in, out);
     out.mesh.regions.assign(out.mesh.tets.size(), 0);
     out.mesh.build_topology(in.index_base);
+    if (out.num_inverted > 0) out.mesh.find_reversed_tets(in.index_base);
     check_sides(out.mesh, in.index_base);
     out.surface.build(out.mesh, in.index_base);
     return out;

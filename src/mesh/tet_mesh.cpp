@@ -116,12 +116,56 @@ void TetMesh::build_topology(int base) {
     update_vertex_flags();
 }
 
+std::array<int32_t, 3> TetMesh::outward_face(int32_t t, int i) const {
+    auto f = face_of(tets[t], i);
+    if (!reversed.empty() && reversed[t]) std::swap(f[1], f[2]);
+    return f;
+}
+
+void TetMesh::find_reversed_tets(int base) {
+    const int32_t nt = num_tets();
+    std::vector<int8_t> parity(tets.size(), -1);
+    std::vector<int32_t> part;
+    for (int32_t seed = 0; seed < nt; ++seed) {
+        if (parity[seed] >= 0) continue;
+        parity[seed] = 0;
+        part.assign(1, seed);
+        int32_t flipped = 0;
+        for (size_t head = 0; head < part.size(); ++head) {
+            const int32_t t = part[head];
+            for (int i = 0; i < 4; ++i) {
+                const int32_t s = neighbors[t][i];
+                if (s < 0) continue;
+                int j = 0;
+                while (neighbors[s][j] != t) ++j;
+                // Same cyclic order of the shared face in both tets means
+                // one of them is reversed relative to the other.
+                const auto a = face_of(tets[t], i), b = face_of(tets[s], j);
+                bool same = false;
+                for (int r = 0; r < 3; ++r) same |= a[0] == b[r] && a[1] == b[(r + 1) % 3];
+                const int8_t want = static_cast<int8_t>(parity[t] ^ (same ? 1 : 0));
+                if (parity[s] < 0) {
+                    parity[s] = want;
+                    flipped += want;
+                    part.push_back(s);
+                } else if (parity[s] != want) {
+                    throw Error(BODT_ERR_BAD_MESH, "the tets around tet " + std::to_string(s + base) +
+                                                       " cannot be oriented consistently");
+                }
+            }
+        }
+        const bool majority_flipped = 2 * flipped > static_cast<int32_t>(part.size());
+        for (int32_t t : part) parity[t] = static_cast<int8_t>(parity[t] ^ (majority_flipped ? 1 : 0));
+    }
+    reversed.assign(parity.begin(), parity.end());
+}
+
 std::vector<SurfaceFace> TetMesh::surface_faces() const {
     std::vector<SurfaceFace> out;
     for (int32_t t = 0; t < num_tets(); ++t) {
         for (int i = 0; i < 4; ++i) {
             if (!is_listed_face(t, i)) continue;
-            const auto f = face_of(tets[t], i);
+            const auto f = outward_face(t, i);
             const auto it = face_markers.find(FaceKey::of(f[0], f[1], f[2]));
             out.push_back({f, it == face_markers.end() ? 0 : it->second});
         }

@@ -56,6 +56,10 @@ public:
     std::vector<int32_t> vt_offset, vt_tets; // CSR: tets of vertex v are vt_tets[vt_offset[v] .. vt_offset[v+1])
     std::vector<uint8_t> vflags;
     std::unordered_map<FaceKey, int32_t, FaceKeyHash> face_markers;
+    // Tets (accepted as inverted) whose vertex order is reversed against
+    // their neighbours'; empty when there are none.  Faces are oriented by
+    // the corrected order, so the surfaces stay consistent.
+    std::vector<uint8_t> reversed;
 
     int32_t num_vertices() const { return static_cast<int32_t>(points.size()); }
     int32_t num_tets() const { return static_cast<int32_t>(tets.size()); }
@@ -79,6 +83,16 @@ public:
     // Recompute the boundary, interface and unused bits of vflags (the fixed
     // bit is kept), after regions or markers changed.
     void update_vertex_flags();
+
+    // Face i of tet t (opposite local vertex i), oriented out of the tet by
+    // its corrected vertex order.
+    std::array<int32_t, 3> outward_face(int32_t t, int i) const;
+
+    // Fills `reversed` for a mesh with inverted tets: walks across shared
+    // faces, which must appear with opposite orientations in their two tets,
+    // and takes each connected part's majority order as the right one.
+    // Throws Error(BODT_ERR_BAD_MESH) if the mesh cannot be oriented.
+    void find_reversed_tets(int base);
 
     // The faces the caller sees, in the documented order and orientation.
     std::vector<SurfaceFace> surface_faces() const;

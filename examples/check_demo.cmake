@@ -1,0 +1,44 @@
+# cmake -DBODT=<bodt command> -DINPUT=<mesh> -DOUTPUT=<mesh> -P check_demo.cmake
+#
+# Runs `bodt improve INPUT OUTPUT` as scripts/demo.sh does, then checks with
+# `bodt quality --json` that the output has the same counts, no inverted tet
+# and a larger smallest dihedral angle than the input.
+cmake_minimum_required(VERSION 3.20)
+get_filename_component(outdir "${OUTPUT}" DIRECTORY)
+file(REMOVE_RECURSE "${outdir}")
+file(MAKE_DIRECTORY "${outdir}")
+
+execute_process(COMMAND "${BODT}" improve "${INPUT}" "${OUTPUT}" --mode laplace --iterations 20
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "bodt improve exited with ${rc}")
+endif()
+
+function(quality path prefix)
+  execute_process(COMMAND "${BODT}" quality "${path}" --json
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE json ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "bodt quality ${path} exited with ${rc}: ${err}")
+  endif()
+  foreach(key vertices tets boundary_faces inverted min_dihedral)
+    string(JSON value GET "${json}" ${key})
+    set(${prefix}_${key} "${value}" PARENT_SCOPE)
+  endforeach()
+endfunction()
+
+quality("${INPUT}" in)
+quality("${OUTPUT}" out)
+message("min dihedral: ${in_min_dihedral} -> ${out_min_dihedral} degrees; inverted: ${out_inverted}")
+foreach(key vertices tets boundary_faces)
+  if(NOT in_${key} EQUAL out_${key})
+    message(FATAL_ERROR "${key} changed: ${in_${key}} -> ${out_${key}}")
+  endif()
+endforeach()
+if(NOT out_inverted EQUAL 0)
+  message(FATAL_ERROR "the output has ${out_inverted} inverted tets")
+endif()
+# if(GREATER) compares the values as floating-point numbers.
+if(NOT out_min_dihedral GREATER in_min_dihedral)
+  message(FATAL_ERROR "the smallest dihedral angle did not grow: ${in_min_dihedral} -> ${out_min_dihedral}")
+endif()

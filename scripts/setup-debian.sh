@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages that libbodt's build, tests and demo need,
+# if any is missing.  Idempotent: when everything is installed it only asks
+# dpkg and never runs apt-get.  Needs root (or sudo) only when it installs.
+set -euo pipefail
+
+packages=(
+  build-essential   # gcc, g++, make, libc headers (and the ASan/UBSan runtimes)
+  cmake             # >= 3.20
+  pkg-config        # the install test compiles against bodt.pc
+  binutils          # nm, readelf (export checks)
+  libeigen3-dev     # MPL-2.0, header-only, used by the core
+  libopenmesh-dev   # BSD-3-Clause, used by the core
+  libcmocka-dev     # Apache-2.0, unit tests
+  libtet1.5-dev     # AGPL-3, command-line tool and tests only (never libbodt.so)
+  python3           # tests may parse JSON with /usr/bin/python3
+)
+
+if ! command -v dpkg-query >/dev/null 2>&1; then
+  echo "setup-debian.sh: not a Debian system (no dpkg-query); install the equivalents of:" >&2
+  echo "  ${packages[*]}" >&2
+  exit 0
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Abbrev}' "$p" 2>/dev/null || true)
+  [[ $status == ii* ]] || missing+=("$p")
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "setup-debian.sh: all ${#packages[@]} required packages are installed"
+  exit 0
+fi
+
+echo "setup-debian.sh: installing ${missing[*]}"
+sudo=()
+if [[ $(id -u) -ne 0 ]]; then
+  if command -v sudo >/dev/null 2>&1; then
+    sudo=(sudo)
+  else
+    echo "setup-debian.sh: run as root, or install: apt-get install ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update </dev/null
+"${sudo[@]}" apt-get install -y --no-install-recommends "${missing[@]}" </dev/null

@@ -1,0 +1,336 @@
+#!/usr/bin/python3
+"""Tests of the bodt command, run by CTest (see tests/CMakeLists.txt).
+
+    test_cli.py --bodt PATH --data DIR --out DIR CASE
+
+CASE is one of quality_json, improve, exit_codes, improve_surface (with
+TetGen), surface_without_tetgen (without).  Every value checked comes from
+running the command; expected mesh quality is recomputed here from the mesh
+file with plain Python (no library code).  Exits 0 on success, 1 on the
+first failed check.
+"""
+import argparse
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+
+FAILURES = []
+
+
+def check(cond, what):
+    if not cond:
+        FAILURES.append(what)
+        print("FAIL:", what)
+    return cond
+
+
+def run(bodt, *args):
+    p = subprocess.run([bodt] + list(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                       universal_newlines=True, timeout=60)
+    return p.returncode, p.stdout, p.stderr
+
+
+# ------------------------------------------------------------ independent geometry
+
+def read_medit(path):
+    """Vertices (list of 3-tuples) and tets (0-based 4-tuples) of a Medit file."""
+    tokens = []
+    with open(path) as f:
+        for line in f:
+            tokens += line.split("#", 1)[0].split()
+    pts, tets, k = [], [], 0
+    while k < len(tokens):
+        t = tokens[k]
+        k += 1
+        if t == "Vertices":
+            n = int(tokens[k]); k += 1
+            for _ in range(n):
+                pts.append(tuple(float(x) for x in tokens[k:k + 3])); k += 4
+        elif t == "Tetrahedra":
+            n = int(tokens[k]); k += 1
+            for _ in range(n):
+                tets.append(tuple(int(x) - 1 for x in tokens[k:k + 4])); k += 5
+        elif t == "Triangles":
+            n = int(tokens[k]); k += 1 + 4 * n
+        elif t == "RequiredVertices" or t == "Corners":
+            n = int(tokens[k]); k += 1 + n
+        elif t == "Dimension" or t == "MeshVersionFormatted":
+            k += 1
+    return pts, tets
+
+
+def sub(a, b): return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+def dot(a, b): return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+def cross(a, b): return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+def norm(a): return math.sqrt(dot(a, a))
+
+
+def dihedrals(p):
+    """Six interior dihedral angles (degrees) of tet p: at edge (i, j) the
+    angle between the other two vertices seen perpendicular to the edge."""
+    out = []
+    for i in range(4):
+        for j in range(i + 1, 4):
+            k, l = [m for m in range(4) if m not in (i, j)]
+            e = sub(p[j], p[i])
+            n1, n2 = cross(e, sub(p[k], p[i])), cross(e, sub(p[l], p[i]))
+            c = max(-1.0, min(1.0, dot(n1, n2) / (norm(n1) * norm(n2))))
+            out.append(math.degrees(math.acos(c)))
+    return out
+
+
+def stretch(p):
+    v = dot(sub(p[1], p[0]), cross(sub(p[2], p[0]), sub(p[3], p[0]))) / 6.0
+    area = sum(0.5 * norm(cross(sub(p[b], p[a]), sub(p[c], p[a])))
+               for a, b, c in ((1, 2, 3), (0, 2, 3), (0, 1, 3), (0, 1, 2)))
+    lmax = max(norm(sub(p[j], p[i])) for i in range(4) for j in range(i + 1, 4))
+    return 6.0 * math.sqrt(6.0) * v / (area * lmax), v
+
+
+def quality_of(path):
+    pts, tets = read_medit(path)
+    angles, stretches, volume = [], [], 0.0
+    for t in tets:
+        p = [pts[v] for v in t]
+        s, v = stretch(p)
+        angles += dihedrals(p)
+        stretches.append(s)
+        volume += v
+    return {"vertices": len(pts), "tets": len(tets), "angles": angles, "stretches": stretches, "volume": volume,
+            "min_dihedral": min(angles), "max_dihedral": max(angles),
+            "mean_dihedral": sum(angles) / len(angles),
+            "stretch_min": min(stretches), "stretch_mean": sum(stretches) / len(stretches)}
+
+
+EDGES = [0, 5, 10, 15, 20, 25, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120, 130, 140, 150, 160, 165, 170, 175, 180]
+
+
+def check_histogram(hist, angles):
+    check(len(hist) == len(EDGES) - 1, "histogram has %d bins" % len(hist))
+    check(sum(hist) == len(angles), "histogram sums to %d, expected %d" % (sum(hist), len(angles)))
+    clear = [0] * (len(EDGES) - 1)
+    ambiguous = [0] * len(EDGES)  # angles within round-off of inner edge k
+    for a in angles:
+        near = [k for k in range(1, len(EDGES) - 1) if abs(a - EDGES[k]) < 1e-9]
+        if near:
+            ambiguous[near[0]] += 1
+            continue
+        b = 0
+        while b < len(EDGES) - 2 and a >= EDGES[b + 1]:
+            b += 1
+        clear[b] += 1
+    for b in range(len(clear)):
+        lo, hi = clear[b], clear[b] + ambiguous[b] + ambiguous[b + 1]
+        check(lo <= hist[b] <= hi,
+              "bin %d [%g, %g): %d, expected %d..%d" % (b, EDGES[b], EDGES[b + 1], hist[b], lo, hi))
+
+
+def quality_json(args, path):
+    code, out, err = run(args.bodt, "quality", path, "--json")
+    if not check(code == 0, "bodt quality %s --json exited %d: %s" % (path, code, err)):
+        return None
+    lines = [l for l in out.splitlines() if l.strip()]
+    check(len(lines) == 1, "--json printed %d lines, expected one: %r" % (len(lines), out))
+    try:
+        obj = json.loads(out)
+    except ValueError as e:
+        check(False, "not JSON (%s): %r" % (e, out))
+        return None
+    check(isinstance(obj, dict), "the JSON is not an object")
+    return obj
+
+
+# ----------------------------------------------------------------------- cases
+
+def case_quality_json(args):
+    path = os.path.join(args.data, "box2.mesh")
+    q = quality_json(args, path)
+    if q is None:
+        return
+    for key in ("vertices", "tets", "min_dihedral", "max_dihedral", "stretch_min", "stretch_mean", "inverted",
+                "volume", "boundary_faces", "mean_dihedral", "dihedral_histogram"):
+        check(key in q, "key %s missing from %s" % (key, sorted(q)))
+    if FAILURES:
+        return
+    # the known numbers of tests/data/box2.mesh (see tests/data/README)
+    check(q["vertices"] == 27, "vertices %r" % q["vertices"])
+    check(q["tets"] == 48, "tets %r" % q["tets"])
+    check(q["boundary_faces"] == 50, "boundary_faces %r" % q["boundary_faces"])
+    check(q["inverted"] == 0, "inverted %r" % q["inverted"])
+    check(abs(q["volume"] - 8.0) <= 1e-12, "volume %r" % q["volume"])
+    check(q.get("mesh") == path, "mesh %r" % q.get("mesh"))
+    # recomputed here from the file
+    ref = quality_of(path)
+    check(abs(ref["volume"] - 8.0) <= 1e-12, "independent volume %r" % ref["volume"])
+    for key in ("min_dihedral", "max_dihedral", "mean_dihedral", "stretch_min", "stretch_mean"):
+        check(abs(q[key] - ref[key]) <= 1e-6, "%s: bodt %r, recomputed %r" % (key, q[key], ref[key]))
+    # and against literal values worked out once from the file with the
+    # formulas above (guards the recomputation itself)
+    check(abs(ref["min_dihedral"] - 29.054604) < 1e-6, "recomputed min dihedral %r" % ref["min_dihedral"])
+    check(abs(ref["stretch_min"] - 0.433519) < 1e-6, "recomputed min stretch %r" % ref["stretch_min"])
+    check_histogram(q["dihedral_histogram"], ref["angles"])
+    # the table form works too
+    code, out, err = run(args.bodt, "quality", path)
+    check(code == 0 and "min dihedral" in out and "29.055" in out, "bodt quality (table): %d %r %r" % (code, out, err))
+
+
+def case_improve(args):
+    src = os.path.join(args.data, "box2.mesh")
+    os.makedirs(args.out, exist_ok=True)
+    dst = os.path.join(args.out, "box2_improved.mesh")
+    if os.path.exists(dst):
+        os.remove(dst)
+    code, out, err = run(args.bodt, "improve", src, dst, "--mode", "laplace", "--iterations", "5")
+    check(code == 0, "bodt improve exited %d: %s" % (code, err))
+    check("before" in out and "after" in out and ("wrote " + dst) in out, "improve output: %r" % out)
+    check(os.path.exists(dst), "%s was not written" % dst)
+    if FAILURES:
+        return
+    before, after = quality_json(args, src), quality_json(args, dst)
+    if before is None or after is None:
+        return
+    check(after["min_dihedral"] >= before["min_dihedral"],
+          "min dihedral went down: %r -> %r" % (before["min_dihedral"], after["min_dihedral"]))
+    check(after["stretch_min"] >= before["stretch_min"], "min stretch went down")
+    for key in ("vertices", "tets", "boundary_faces", "inverted"):
+        check(after[key] == before[key], "%s: %r -> %r" % (key, before[key], after[key]))
+    check(abs(after["volume"] - 8.0) <= 1e-12, "volume after %r" % after["volume"])
+    # only the centre vertex (the one interior vertex) may move
+    p0, t0 = read_medit(src)
+    p1, t1 = read_medit(dst)
+    check(t0 == t1, "the tets changed")
+    moved = [v for v in range(len(p0)) if p0[v] != p1[v]]
+    check(moved == [13], "moved vertices %r, expected [13]" % moved)
+    ref = quality_of(dst)
+    check(abs(after["min_dihedral"] - ref["min_dihedral"]) <= 1e-6, "the written file's min dihedral")
+    # TetGen output, read back
+    node = os.path.join(args.out, "box2_improved.node")
+    code, out, err = run(args.bodt, "improve", src, node, "--iterations", "3")
+    check(code == 0, "improve to .node exited %d: %s" % (code, err))
+    for ext in (".node", ".ele", ".face"):
+        check(os.path.exists(node[:-5] + ext), "%s not written" % (node[:-5] + ext))
+    q = quality_json(args, node[:-5] + ".ele")
+    if q is not None:
+        check(q["tets"] == 48 and q["inverted"] == 0 and q["min_dihedral"] >= before["min_dihedral"],
+              "the .ele read back: %r" % q)
+
+
+def case_exit_codes(args):
+    os.makedirs(args.out, exist_ok=True)
+    good = os.path.join(args.data, "box2.mesh")
+    out = os.path.join(args.out, "exit_out.mesh")
+    missing = os.path.join(args.out, "does_not_exist.mesh")
+    bad = os.path.join(args.out, "malformed.mesh")
+    with open(bad, "w") as f:
+        f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\nbogus 0 0 0\n0 0 1 0\n")
+    usage = [
+        [],
+        ["frobnicate"],
+        ["quality"],
+        ["quality", good, good],
+        ["quality", good, "--bogus"],
+        ["improve"],
+        ["improve", good],
+        ["improve", good, out, "extra"],
+        ["improve", good, out, "--mode", "nonsense"],
+        ["improve", good, out, "--mode"],
+        ["improve", good, out, "--iterations", "0"],
+        ["improve", good, out, "--iterations", "-2"],
+        ["improve", good, out, "--iterations", "12abc"],
+        ["improve", good, out, "--iterations"],
+        ["improve", good, out, "--frobnicate"],
+    ]
+    for argv in usage:
+        code, o, e = run(args.bodt, *argv)
+        check(code == 1, "bodt %s: exit %d, expected 1 (usage)" % (" ".join(argv), code))
+        check(e.strip() != "", "bodt %s: nothing on stderr" % " ".join(argv))
+    check(not os.path.exists(out), "a usage error wrote %s" % out)
+    unreadable = [
+        ["quality", missing],
+        ["quality", bad],
+        ["quality", os.path.join(args.out, "mesh.xyz")],
+        ["improve", missing, out],
+        ["improve", bad, out],
+    ]
+    for argv in unreadable:
+        code, o, e = run(args.bodt, *argv)
+        check(code == 2, "bodt %s: exit %d, expected 2 (input)" % (" ".join(argv), code))
+        check(argv[1] in e, "bodt %s: stderr does not name the file: %r" % (" ".join(argv), e))
+    code, o, e = run(args.bodt, "quality", bad)
+    check(bad + ":7:" in e, "the malformed file's line is not named: %r" % e)
+    check(not os.path.exists(out), "a failed improve wrote %s" % out)
+    # an output that cannot be written
+    code, o, e = run(args.bodt, "improve", good, os.path.join(args.out, "no_such_dir", "x.mesh"))
+    check(code == 4, "unwritable output: exit %d, expected 4" % code)
+    # help and version
+    code, o, e = run(args.bodt, "--help")
+    check(code == 0 and "usage" in o, "--help: %d %r" % (code, o))
+    header = open(os.path.join(args.data, "..", "..", "include", "bodt.h")).read()
+    version = ".".join(re.search(r"#define BODT_VERSION_%s (\d+)" % k, header).group(1)
+                       for k in ("MAJOR", "MINOR", "PATCH"))
+    code, o, e = run(args.bodt, "--version")
+    check(code == 0 and o.strip() == "bodt " + version, "--version: %d %r, expected bodt %s" % (code, o, version))
+
+
+def case_improve_surface(args):
+    os.makedirs(args.out, exist_ok=True)
+    src = os.path.join(args.data, "octahedron.off")
+    dst = os.path.join(args.out, "octahedron.mesh")
+    if os.path.exists(dst):
+        os.remove(dst)
+    code, out, err = run(args.bodt, "improve", src, dst)
+    check(code == 0, "bodt improve %s exited %d: %s" % (src, code, err))
+    check(not out.startswith("Opening"), "TetGen's chatter reached stdout: %r" % out[:60])
+    q = quality_json(args, dst)
+    if q is None:
+        return
+    check(q["inverted"] == 0, "inverted %r" % q["inverted"])
+    check(q["tets"] >= 4, "tets %r" % q["tets"])
+    check(q["vertices"] >= 6, "vertices %r" % q["vertices"])
+    check(q["boundary_faces"] >= 8, "boundary faces %r" % q["boundary_faces"])
+    check(abs(q["volume"] - 4.0 / 3.0) <= 1e-12, "volume %r, expected 4/3" % q["volume"])
+    ref = quality_of(dst)
+    check(abs(ref["volume"] - 4.0 / 3.0) <= 1e-12, "independent volume %r" % ref["volume"])
+    check(abs(q["min_dihedral"] - ref["min_dihedral"]) <= 1e-6,
+          "min dihedral %r vs %r" % (q["min_dihedral"], ref["min_dihedral"]))
+    # the surface vertices are all there, unmoved
+    pts, _ = read_medit(dst)
+    for p in ((1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)):
+        check(p in pts, "surface vertex %r missing from the output" % (p,))
+    # a surface that is not closed is refused as input
+    bad = os.path.join(args.out, "open.off")
+    with open(bad, "w") as f:
+        f.write("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n")
+    code, out, err = run(args.bodt, "quality", bad)
+    check(code == 2, "an open surface: exit %d, expected 2" % code)
+
+
+def case_surface_without_tetgen(args):
+    src = os.path.join(args.data, "octahedron.off")
+    code, out, err = run(args.bodt, "quality", src)
+    check(code == 2, "exit %d, expected 2" % code)
+    check("TetGen" in err, "the message does not say TetGen is missing: %r" % err)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bodt", required=True)
+    ap.add_argument("--data", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("case", choices=["quality_json", "improve", "exit_codes", "improve_surface",
+                                     "surface_without_tetgen"])
+    args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    globals()["case_" + args.case](args)
+    if FAILURES:
+        print("%d check(s) failed" % len(FAILURES))
+        return 1
+    print("ok")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

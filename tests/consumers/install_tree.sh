@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Installs BUILD_DIR with `cmake --install --prefix PREFIX` (a scratch
+# directory in the build tree, never the system prefix) and checks the tree.
+# Environment: CMAKE BUILD_DIR SOURCE_DIR PREFIX LIBDIR INCLUDEDIR BINDIR
+# VERSION SOVERSION.  Exit 77 (skipped) if the install dirs are absolute,
+# since --prefix would not redirect them.
+set -euo pipefail
+: "${CMAKE:=cmake}"
+for d in "$LIBDIR" "$INCLUDEDIR" "$BINDIR"; do
+  if [[ $d == /* ]]; then
+    echo "SKIP: install directory '$d' is absolute; cmake --install --prefix cannot redirect it"
+    exit 77
+  fi
+done
+case $PREFIX in
+  ""|/|/usr|/usr/local) echo "FAIL: refusing to install into '$PREFIX'"; exit 1 ;;
+esac
+if [[ ! -e $BUILD_DIR/cmake_install.cmake ]]; then
+  echo "FAIL: $BUILD_DIR is not a configured build tree"; exit 1
+fi
+
+unset DESTDIR
+rm -rf "$PREFIX"
+"$CMAKE" --install "$BUILD_DIR" --prefix "$PREFIX"
+
+fail=0
+check() {  # check DESCRIPTION TEST-ARGS...
+  local what=$1; shift
+  if test "$@"; then echo "ok   $what"; else echo "FAIL $what"; fail=1; fi
+}
+lib=$PREFIX/$LIBDIR
+check "header $INCLUDEDIR/bodt.h" -f "$PREFIX/$INCLUDEDIR/bodt.h"
+if ! cmp -s "$SOURCE_DIR/include/bodt.h" "$PREFIX/$INCLUDEDIR/bodt.h"; then
+  echo "FAIL the installed bodt.h differs from include/bodt.h"; fail=1
+fi
+check "$LIBDIR/libbodt.so.$VERSION is a file" -f "$lib/libbodt.so.$VERSION" -a ! -L "$lib/libbodt.so.$VERSION"
+check "$LIBDIR/libbodt.so.$SOVERSION -> libbodt.so.$VERSION" \
+  -L "$lib/libbodt.so.$SOVERSION" -a "$(readlink "$lib/libbodt.so.$SOVERSION" 2>/dev/null)" = "libbodt.so.$VERSION"
+check "$LIBDIR/libbodt.so -> libbodt.so.$SOVERSION" \
+  -L "$lib/libbodt.so" -a "$(readlink "$lib/libbodt.so" 2>/dev/null)" = "libbodt.so.$SOVERSION"
+check "$LIBDIR/pkgconfig/bodt.pc" -f "$lib/pkgconfig/bodt.pc"
+for f in bodtConfig.cmake bodtConfigVersion.cmake bodtTargets.cmake; do
+  check "$LIBDIR/cmake/bodt/$f" -f "$lib/cmake/bodt/$f"
+done
+per_config=$(find "$lib/cmake/bodt" -name 'bodtTargets-*.cmake' 2>/dev/null | head -n 1)
+check "$LIBDIR/cmake/bodt/bodtTargets-<config>.cmake" -n "$per_config"
+check "$BINDIR/bodt" -x "$PREFIX/$BINDIR/bodt"
+
+if [[ -x $PREFIX/$BINDIR/bodt ]]; then
+  got=$(LD_LIBRARY_PATH=$lib "$PREFIX/$BINDIR/bodt" --version 2>&1 || true)
+  check "installed 'bodt --version' says 'bodt $VERSION' (got '$got')" "$got" = "bodt $VERSION"
+fi
+
+echo "installed tree:"
+(cd "$PREFIX" && find . \( -type f -o -type l \) | sort | sed 's/^/  /')
+if ((fail)); then exit 1; fi
+echo "OK: installed into $PREFIX"

@@ -1,0 +1,442 @@
+// test_core: white-box tests of the C++ core (links bodt_core).
+//
+//   bodt::orient          the certified sign: exactly coplanar points (even
+//                         when round-off makes the determinant nonzero) give 0,
+//                         clearly oriented ones +1 / -1
+//   bodt::dihedral_angles against closed forms, edge by edge
+//   TetMesh               neighbours and vertex stars against brute force
+//   BoundarySurface       one_ring of every boundary vertex of a box, an
+//                         L-shaped (nonconvex) block and a ball: exactly the
+//                         boundary neighbours, turning around the outward
+//                         normal; build() refuses pinched vertices and edges
+#include "common/error.hpp"
+#include "mesh/boundary_surface.hpp"
+#include "mesh/mesh_builder.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "quality/tet_geometry.hpp"
+
+#include "bodt.h"
+#include "mesh_gen.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "test_util.h"
+
+namespace {
+
+using bodt::Vec3;
+
+constexpr double kDeg = 180.0 / M_PI;
+
+// ------------------------------------------------------------------ orient
+
+void test_orient_clear_signs(void**) {
+    const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);
+    const auto o = bodt::orient(a, b, c, d);
+    assert_int_equal(o.sign, 1);
+    assert_true(o.det6 == 1.0);
+    assert_int_equal(bodt::orient(a, c, b, d).sign, -1);
+    assert_int_equal(bodt::orient(b, a, c, d).sign, -1);
+    // tiny but certain: the exact determinant 1e-12 is far above round-off
+    assert_int_equal(bodt::orient(a, b, c, Vec3(0.25, 0.25, 1e-12)).sign, 1);
+    assert_int_equal(bodt::orient(a, b, c, Vec3(0.25, 0.25, -1e-12)).sign, -1);
+    // far from the origin, still clear
+    const Vec3 s(1e6, -3e6, 2e6);
+    assert_int_equal(bodt::orient(a + s, b + s, c + s, d + s).sign, 1);
+}
+
+void test_orient_flat(void**) {
+    // exactly flat: determinant 0
+    const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+    const auto o = bodt::orient(a, b, c, Vec3(0.3, 0.3, 0));
+    assert_int_equal(o.sign, 0);
+    assert_true(o.det6 == 0.0);
+    // on the plane x + y + z = 1 up to the rounding of the decimal inputs
+    const auto p = bodt::orient(Vec3(0.1, 0.2, 0.7), Vec3(0.3, 0.3, 0.4), Vec3(0.7, 0.1, 0.2), Vec3(0.2, 0.6, 0.2));
+    assert_int_equal(p.sign, 0);
+    assert_true(std::fabs(p.det6) < 1e-14);
+
+    // Exactly coplanar integer points with coordinates up to 2^20: d = b + c
+    // - a (or another integer combination) makes the exact determinant 0,
+    // while the floating-point one rounds products of up to 2^64.  A sign
+    // of +-1 there would be a certification failure.  Points moved off the
+    // plane by a unit step must get the exact sign, computed in __int128.
+    tm_rng rng;
+    tm_rng_seed(&rng, 42);
+    const auto rnd = [&rng] { return std::floor((2.0 * tm_rng_uniform(&rng) - 1.0) * 1048576.0); };
+    int nonzero_det = 0, certified = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const Vec3 A(rnd(), rnd(), rnd()), B(rnd(), rnd(), rnd()), C(rnd(), rnd(), rnd());
+        const int s = 1 + trial % 3, t = 1 - trial % 2;
+        const Vec3 D = A + s * (B - A) - t * (C - A) + (trial % 5 == 0 ? Vec3(0, 0, 0) : (C - A));
+        const auto on = bodt::orient(A, B, C, D);
+        if (on.sign != 0) fail_msg("trial %d: coplanar points got sign %d (det %g)", trial, on.sign, on.det6);
+        nonzero_det += on.det6 != 0.0;
+
+        // one unit off the plane
+        const Vec3 E = D + Vec3(trial % 2, (trial / 2) % 2, 1);
+        __int128 u[3], v[3], w[3];
+        for (int k = 0; k < 3; ++k) {
+            u[k] = static_cast<__int128>(B[k] - A[k]);
+            v[k] = static_cast<__int128>(C[k] - A[k]);
+            w[k] = static_cast<__int128>(E[k] - A[k]);
+        }
+        const __int128 exact = u[0] * (v[1] * w[2] - v[2] * w[1]) + u[1] * (v[2] * w[0] - v[0] * w[2]) +
+                               u[2] * (v[0] * w[1] - v[1] * w[0]);
+        const int exact_sign = exact > 0 ? 1 : (exact < 0 ? -1 : 0);
+        const auto off = bodt::orient(A, B, C, E);
+        if (off.sign != 0 && off.sign != exact_sign)
+            fail_msg("trial %d: certified sign %d, exact sign %d", trial, off.sign, exact_sign);
+        certified += off.sign != 0;
+    }
+    // round-off did show in the determinant, and most off-plane cases are
+    // decided
+    assert_true(nonzero_det > 100);
+    assert_true(certified > 10000);
+}
+
+// --------------------------------------------------------- dihedral angles
+
+bodt::TetPoints pts(const double (&p)[12]) {
+    return {Vec3(p[0], p[1], p[2]), Vec3(p[3], p[4], p[5]), Vec3(p[6], p[7], p[8]), Vec3(p[9], p[10], p[11])};
+}
+
+void expect_angles(const bodt::TetPoints& p, const std::array<double, 6>& expected, double tol) {
+    const auto a = bodt::dihedral_angles(p);
+    for (int e = 0; e < 6; ++e)
+        if (!(std::fabs(a[e] - expected[e]) <= tol))
+            fail_msg("edge (%d, %d): %.15g degrees, expected %.15g", bodt::kEdgeVertex[e][0], bodt::kEdgeVertex[e][1],
+                     a[e], expected[e]);
+}
+
+void test_dihedral_angles(void**) {
+    // regular: acos(1/3) everywhere
+    const double reg = std::acos(1.0 / 3.0) * kDeg;
+    expect_angles(pts({1, 1, 1, 1, -1, -1, -1, -1, 1, -1, 1, -1}), {reg, reg, reg, reg, reg, reg}, 1e-10);
+    // the Kuhn tet (0,0,0) (1,0,0) (1,1,0) (1,1,1), edges in kEdgeVertex order
+    // (0 1) (0 2) (0 3) (1 2) (1 3) (2 3): worked out by projecting the two
+    // other vertices onto the plane normal to each edge
+    expect_angles(pts({0, 0, 0, 1, 0, 0, 1, 1, 0, 1, 1, 1}), {45, 90, 60, 90, 90, 45}, 1e-10);
+    // a sliver (1,0,0) (-1,0,0) (0,-1,h) (0,1,h): pi - 2 atan h at edges (0 1)
+    // and (2 3), atan(h sqrt(2 + h^2)) at the four others
+    for (double h : {0.5, 0.01, 1e-5}) {
+        const double big = 180.0 - 2.0 * std::atan(h) * kDeg;
+        const double small = std::atan(h * std::sqrt(2.0 + h * h)) * kDeg;
+        expect_angles(pts({1, 0, 0, -1, 0, 0, 0, -1, h, 0, 1, h}), {big, small, small, small, small, big}, 1e-9);
+    }
+    // a right-angled corner stretched along z: (0,0,0) (1,0,0) (0,1,0)
+    // (0,0,L).  The three edges at the origin are 90 degrees; the others lie
+    // between a coordinate plane and the slanted face x + y + z / L = 1,
+    // whose outward normal is (L, L, 1) / sqrt(2 L^2 + 1)
+    const double L = 7.0;
+    const auto a = bodt::dihedral_angles(pts({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, L}));
+    assert_near(a[0], 90.0, 1e-12);  // (0 1)
+    assert_near(a[1], 90.0, 1e-12);  // (0 2)
+    assert_near(a[2], 90.0, 1e-12);  // (0 3)
+    // edge (1 2): between the base z = 0 and the face through (1,0,0),
+    // (0,1,0), (0,0,L), whose normal is (L, L, 1): cos = 1 / sqrt(2 L^2 + 1)
+    assert_near(a[3], std::acos(1.0 / std::sqrt(2 * L * L + 1)) * kDeg, 1e-10);
+    // edge (1 3): between y = 0 and that face: cos = L / sqrt(2 L^2 + 1)
+    assert_near(a[4], std::acos(L / std::sqrt(2 * L * L + 1)) * kDeg, 1e-10);
+    assert_near(a[5], std::acos(L / std::sqrt(2 * L * L + 1)) * kDeg, 1e-10);
+    // dihedral_range agrees, and gives 0/180 when told the tet is not positive
+    const auto r = bodt::dihedral_range(pts({0, 0, 0, 1, 0, 0, 1, 1, 0, 1, 1, 1}), true);
+    assert_near(r.min, 45, 1e-10);
+    assert_near(r.max, 90, 1e-10);
+    const auto bad = bodt::dihedral_range(pts({0, 0, 0, 1, 0, 0, 1, 1, 0, 1, 1, 1}), false);
+    assert_true(bad.min == 0.0 && bad.max == 180.0);
+}
+
+// --------------------------------------------------------------- meshes
+
+struct Built {
+    test_mesh m{};
+    bodt::BuiltMesh b;
+};
+
+void build(Built& out, int n, double size, tm_cube_filter keep, double jitter, uint64_t seed) {
+    assert_int_equal(tm_make_cubes(&out.m, n, size, keep, nullptr, jitter, seed), 0);
+    bodt::MeshArrays a;
+    a.nverts = out.m.nverts;
+    a.xyz = out.m.xyz;
+    a.ntets = out.m.ntets;
+    a.tets = out.m.tets;
+    try {
+        out.b = bodt::build_mesh(a);
+    } catch (const bodt::Error& e) {
+        fail_msg("build_mesh: %s", e.what());
+    }
+}
+
+int keep_l_shape(int i, int j, int, int n, void*) { return !(2 * i >= n && 2 * j >= n); }
+
+// Maps the box [0, 2]^3 onto a ball of radius 1 around (1, 1, 1): each point
+// moves along its ray from the centre, the cube shell of "radius" r (max
+// norm) onto the sphere of radius r.
+void to_ball(test_mesh& m) {
+    for (int32_t v = 0; v < m.nverts; ++v) {
+        double* p = &m.xyz[3 * v];
+        double q[3] = {p[0] - 1, p[1] - 1, p[2] - 1};
+        const double inf = std::max({std::fabs(q[0]), std::fabs(q[1]), std::fabs(q[2])});
+        const double two = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        if (two > 0)
+            for (int k = 0; k < 3; ++k) p[k] = q[k] * inf / two;
+        else
+            for (int k = 0; k < 3; ++k) p[k] = 0;
+    }
+}
+
+using Key = std::array<int32_t, 3>;
+
+Key sorted(int32_t a, int32_t b, int32_t c) {
+    Key k{a, b, c};
+    std::sort(k.begin(), k.end());
+    return k;
+}
+
+void test_neighbors_brute_force(void**) {
+    for (int shape = 0; shape < 2; ++shape) {
+        Built bm;
+        build(bm, 4, 1.0, shape ? keep_l_shape : nullptr, 0.25, 17 + shape);
+        const bodt::TetMesh& mesh = bm.b.mesh;
+        assert_int_equal(mesh.num_tets(), bm.m.ntets);
+        // brute force: every face of every tet, by its sorted vertices
+        std::map<Key, std::vector<std::pair<int32_t, int>>> faces;
+        for (int32_t t = 0; t < mesh.num_tets(); ++t)
+            for (int i = 0; i < 4; ++i) {
+                std::vector<int32_t> f;
+                for (int j = 0; j < 4; ++j)
+                    if (j != i) f.push_back(mesh.tets[t][j]);
+                faces[sorted(f[0], f[1], f[2])].push_back({t, i});
+            }
+        int boundary = 0;
+        for (int32_t t = 0; t < mesh.num_tets(); ++t)
+            for (int i = 0; i < 4; ++i) {
+                std::vector<int32_t> f;
+                for (int j = 0; j < 4; ++j)
+                    if (j != i) f.push_back(mesh.tets[t][j]);
+                const auto& owners = faces[sorted(f[0], f[1], f[2])];
+                assert_true(owners.size() == 1 || owners.size() == 2);
+                int32_t expected = -1;
+                for (const auto& o : owners)
+                    if (o.first != t) expected = o.first;
+                if (mesh.neighbors[t][i] != expected)
+                    fail_msg("tet %d face %d: neighbour %d, brute force %d", t, i, mesh.neighbors[t][i], expected);
+                boundary += expected < 0;
+            }
+        // the Kuhn box has 12 n^2 boundary triangles; the L has more
+        if (!shape) assert_int_equal(boundary, 12 * 16);
+        // vertex stars
+        for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
+            std::vector<int32_t> star(mesh.star_begin(v), mesh.star_end(v)), expected;
+            for (int32_t t = 0; t < mesh.num_tets(); ++t)
+                if (std::count(mesh.tets[t].begin(), mesh.tets[t].end(), v)) expected.push_back(t);
+            std::sort(star.begin(), star.end());
+            assert_true(star == expected);
+        }
+        // every stored tet is positively oriented
+        for (int32_t t = 0; t < mesh.num_tets(); ++t) {
+            const auto p = mesh.tet_points(t);
+            assert_int_equal(bodt::orient(p[0], p[1], p[2], p[3]).sign, 1);
+        }
+        tm_free(&bm.m);
+    }
+}
+
+// One-rings of every boundary vertex against brute force: the boundary
+// faces (faces of one tet, oriented away from the tet's fourth vertex), each
+// vertex's outward normal (the sum of its faces' area vectors) and its
+// boundary neighbours.
+void check_one_rings(const bodt::TetMesh& mesh, const bodt::BoundarySurface& surface, const char* name) {
+    std::map<Key, std::vector<std::pair<int32_t, int>>> faces;
+    for (int32_t t = 0; t < mesh.num_tets(); ++t)
+        for (int i = 0; i < 4; ++i) {
+            std::vector<int32_t> f;
+            for (int j = 0; j < 4; ++j)
+                if (j != i) f.push_back(mesh.tets[t][j]);
+            faces[sorted(f[0], f[1], f[2])].push_back({t, i});
+        }
+    const int32_t nv = mesh.num_vertices();
+    std::vector<Vec3> normal(nv, Vec3::Zero());
+    std::vector<std::set<int32_t>> nbrs(nv);
+    std::set<std::array<int32_t, 3>> oriented;  // (a, b, c) and its rotations
+    int nfaces = 0;
+    for (const auto& [key, owners] : faces) {
+        if (owners.size() != 1) continue;
+        ++nfaces;
+        const auto [t, i] = owners[0];
+        std::array<int32_t, 3> f = key;
+        const Vec3& a = mesh.points[f[0]];
+        Vec3 n = (mesh.points[f[1]] - a).cross(mesh.points[f[2]] - a);
+        if (n.dot(mesh.points[mesh.tets[t][i]] - a) > 0) {
+            std::swap(f[1], f[2]);
+            n = -n;
+        }
+        for (int k = 0; k < 3; ++k) {
+            normal[f[k]] += n;
+            nbrs[f[k]].insert(f[(k + 1) % 3]);
+            nbrs[f[k]].insert(f[(k + 2) % 3]);
+            oriented.insert({f[k], f[(k + 1) % 3], f[(k + 2) % 3]});
+        }
+    }
+    assert_int_equal(surface.num_faces(), nfaces);
+    std::vector<int32_t> ring;
+    int checked = 0;
+    for (int32_t v = 0; v < nv; ++v) {
+        surface.one_ring(v, ring);
+        if (nbrs[v].empty()) {
+            if (!ring.empty()) fail_msg("%s: interior vertex %d has a ring of %zu", name, v, ring.size());
+            continue;
+        }
+        ++checked;
+        const std::set<int32_t> as_set(ring.begin(), ring.end());
+        if (as_set.size() != ring.size() || as_set != nbrs[v])
+            fail_msg("%s: vertex %d: ring of %zu (%zu distinct), %zu boundary neighbours", name, v, ring.size(),
+                     as_set.size(), nbrs[v].size());
+        const Vec3& x0 = mesh.points[v];
+        for (size_t k = 0; k < ring.size(); ++k) {
+            const int32_t y0 = ring[k], y1 = ring[(k + 1) % ring.size()];
+            // (v, y_i, y_{i+1}) is an outward boundary face ...
+            if (!oriented.count({v, y0, y1}))
+                fail_msg("%s: vertex %d: (%d, %d, %d) is not an outward boundary face", name, v, v, y0, y1);
+            // ... and turns positively around the outward normal
+            const double turn = (mesh.points[y0] - x0).cross(mesh.points[y1] - x0).dot(normal[v]);
+            if (!(turn > 0)) fail_msg("%s: vertex %d, ring %zu: turn %g", name, v, k, turn);
+        }
+    }
+    assert_true(checked > 0);
+    // not a mesh vertex: empty
+    surface.one_ring(-1, ring);
+    assert_true(ring.empty());
+    surface.one_ring(nv, ring);
+    assert_true(ring.empty());
+}
+
+void test_one_ring_box(void**) {
+    Built bm;
+    build(bm, 3, 1.0, nullptr, 0.25, 5);
+    check_one_rings(bm.b.mesh, bm.b.surface, "box");
+    tm_free(&bm.m);
+}
+
+void test_one_ring_l_shape(void**) {
+    Built bm;
+    build(bm, 4, 1.0, keep_l_shape, 0.25, 6);
+    check_one_rings(bm.b.mesh, bm.b.surface, "L-shape");
+    tm_free(&bm.m);
+}
+
+void test_one_ring_ball(void**) {
+    Built bm;
+    assert_int_equal(tm_make_cubes(&bm.m, 4, 2.0, nullptr, nullptr, 0.0, 1), 0);
+    to_ball(bm.m);
+    bodt::MeshArrays a;
+    a.nverts = bm.m.nverts;
+    a.xyz = bm.m.xyz;
+    a.ntets = bm.m.ntets;
+    a.tets = bm.m.tets;
+    try {
+        bm.b = bodt::build_mesh(a);
+    } catch (const bodt::Error& e) {
+        fail_msg("build_mesh (ball): %s", e.what());
+    }
+    assert_false(bm.b.flipped);
+    // every boundary vertex is on the unit sphere
+    for (int32_t v = 0; v < bm.m.nverts; ++v)
+        if (bm.m.boundary[v]) assert_near(bm.b.mesh.points[v].norm(), 1.0, 1e-12);
+    check_one_rings(bm.b.mesh, bm.b.surface, "ball");
+    tm_free(&bm.m);
+}
+
+// A mesh given in negative orientation is stored flipped; rings still turn
+// around the outward normal.
+void test_one_ring_negative_input(void**) {
+    test_mesh m{};
+    assert_int_equal(tm_make_cubes(&m, 3, 1.0, keep_l_shape, nullptr, 0.2, 9), 0);
+    for (int32_t t = 0; t < m.ntets; ++t) std::swap(m.tets[4 * t + 2], m.tets[4 * t + 3]);
+    bodt::MeshArrays a;
+    a.nverts = m.nverts;
+    a.xyz = m.xyz;
+    a.ntets = m.ntets;
+    a.tets = m.tets;
+    const bodt::BuiltMesh b = bodt::build_mesh(a);
+    assert_true(b.flipped);
+    check_one_rings(b.mesh, b.surface, "negative L-shape");
+    tm_free(&m);
+}
+
+// ------------------------------------------------------------ pinches
+
+int keep_diagonal_pair(int i, int j, int k, int, void*) {
+    return (i == 0 && j == 0 && k == 0) || (i == 1 && j == 1 && k == 1);
+}
+int keep_edge_pair(int i, int j, int k, int, void*) { return k == 0 && ((i == 0 && j == 0) || (i == 1 && j == 1)); }
+
+void expect_surface_refused(tm_cube_filter keep, const char* part) {
+    test_mesh m{};
+    assert_int_equal(tm_make_cubes(&m, 2, 2.0, keep, nullptr, 0.0, 1), 0);
+    assert_int_equal(m.ntets, 12);
+    bodt::TetMesh mesh;
+    for (int32_t v = 0; v < m.nverts; ++v) mesh.points.emplace_back(m.xyz[3 * v], m.xyz[3 * v + 1], m.xyz[3 * v + 2]);
+    for (int32_t t = 0; t < m.ntets; ++t)
+        mesh.tets.push_back({m.tets[4 * t], m.tets[4 * t + 1], m.tets[4 * t + 2], m.tets[4 * t + 3]});
+    mesh.regions.assign(mesh.tets.size(), 0);
+    mesh.build_topology(0);  // the connectivity itself is fine
+    bodt::BoundarySurface surface;
+    bool thrown = false;
+    try {
+        surface.build(mesh, 0);
+    } catch (const bodt::Error& e) {
+        thrown = true;
+        assert_int_equal(e.status(), BODT_ERR_BAD_MESH);
+        assert_contains(e.what(), part);
+    }
+    assert_true(thrown);
+    // build_mesh refuses it the same way
+    bodt::MeshArrays a;
+    a.nverts = m.nverts;
+    a.xyz = m.xyz;
+    a.ntets = m.ntets;
+    a.tets = m.tets;
+    thrown = false;
+    try {
+        bodt::build_mesh(a);
+    } catch (const bodt::Error& e) {
+        thrown = true;
+        assert_int_equal(e.status(), BODT_ERR_BAD_MESH);
+        assert_contains(e.what(), part);
+    }
+    assert_true(thrown);
+    tm_free(&m);
+}
+
+void test_surface_refuses_pinches(void**) {
+    // two cubes meeting at one corner: the shared vertex is number 7 (the
+    // centre (1,1,1) of the 3 x 3 x 3 grid is the 8th vertex in use)
+    expect_surface_refused(keep_diagonal_pair, "not a manifold surface at vertex 7");
+    // two cubes meeting along an edge
+    expect_surface_refused(keep_edge_pair, "not a manifold surface at edge");
+}
+
+}  // namespace
+
+int main() {
+    const CMUnitTest tests[] = {
+        cmocka_unit_test(test_orient_clear_signs),
+        cmocka_unit_test(test_orient_flat),
+        cmocka_unit_test(test_dihedral_angles),
+        cmocka_unit_test(test_neighbors_brute_force),
+        cmocka_unit_test(test_one_ring_box),
+        cmocka_unit_test(test_one_ring_l_shape),
+        cmocka_unit_test(test_one_ring_ball),
+        cmocka_unit_test(test_one_ring_negative_input),
+        cmocka_unit_test(test_surface_refuses_pinches),
+    };
+    return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
