@@ -8,7 +8,7 @@ get_filename_component(outdir "${OUTPUT}" DIRECTORY)
 file(REMOVE_RECURSE "${outdir}")
 file(MAKE_DIRECTORY "${outdir}")
 
-execute_process(COMMAND "${BODT}" improve "${INPUT}" "${OUTPUT}" --mode laplace --iterations 20
+execute_process(COMMAND "${BODT}" improve "${INPUT}" "${OUTPUT}" --mode bodt --iterations 20
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
 if(NOT rc EQUAL 0)

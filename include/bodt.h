@@ -44,10 +44,10 @@ extern "C" {
 /* ---------------------------------------------------------------- version */
 
 #define BODT_VERSION_MAJOR 0
-#define BODT_VERSION_MINOR 1
+#define BODT_VERSION_MINOR 2
 #define BODT_VERSION_PATCH 0
 /* MAJOR * 10000 + MINOR * 100 + PATCH, comparable with bodt_version_number() */
-#define BODT_VERSION_NUMBER 100
+#define BODT_VERSION_NUMBER 200
 
 /* The version of the library actually loaded, e.g. "0.1.0". */
 BODT_API const char *bodt_version_string(void);
@@ -146,6 +146,16 @@ BODT_API int bodt_mesh_set_boundary_faces(bodt_mesh *mesh, int32_t nfaces,
 BODT_API int bodt_mesh_set_fixed_vertices(bodt_mesh *mesh, int32_t nfixed,
                                           const int32_t *vertices);
 
+/*
+ * Feature edges (sharp CAD edges, ridges): 2 * nedges vertex indices.  Each
+ * must be an edge of a boundary or interface face.  In BODT_MODE_BODT their
+ * vertices move only along the feature line, and where they end, branch or
+ * turn sharply the vertex is a corner; edges found by the feature-angle test
+ * are added to these.  Replaces an earlier list.
+ */
+BODT_API int bodt_mesh_set_feature_edges(bodt_mesh *mesh, int32_t nedges,
+                                         const int32_t *edges);
+
 /* ---------------------------------------------------------------- getters */
 
 /*
@@ -179,6 +189,28 @@ BODT_API int bodt_mesh_get_boundary_faces(const bodt_mesh *mesh,
 /* nverts flags: 1 where the vertex is fixed by the caller, else 0. */
 BODT_API int bodt_mesh_get_fixed_vertices(const bodt_mesh *mesh,
                                           int32_t *is_fixed, size_t capacity);
+/* The caller's feature edges: *nedges receives their count; edges (2 per
+ * edge, may be NULL to ask for the count) receives them, sorted;
+ * capacity counts edges. */
+BODT_API int bodt_mesh_get_feature_edges(const bodt_mesh *mesh,
+                                         int32_t *nedges, int32_t *edges,
+                                         size_t capacity);
+
+/* How the current mode treats each vertex (bodt_mesh_get_vertex_classes). */
+enum bodt_vertex_class {
+    BODT_VERTEX_INTERIOR = 0,     /* moves freely (ODT, eq. 3)               */
+    BODT_VERTEX_SURFACE = 1,      /* moves in its surface's tangent plane   */
+    BODT_VERTEX_FEATURE_LINE = 2, /* moves along a feature line             */
+    BODT_VERTEX_CORNER = 3,       /* does not move: a feature corner        */
+    BODT_VERTEX_FIXED = 4,        /* does not move: fixed by the caller, or on
+                                     a marked interior face of one region   */
+    BODT_VERTEX_UNUSED = 5        /* in no tet                              */
+};
+/* nverts classes (enum bodt_vertex_class).  Feature lines and corners are
+ * found in BODT_MODE_BODT only; the other modes see every boundary and
+ * interface vertex as BODT_VERTEX_SURFACE. */
+BODT_API int bodt_mesh_get_vertex_classes(const bodt_mesh *mesh,
+                                          int32_t *classes, size_t capacity);
 
 /* ---------------------------------------------------------------- quality */
 
@@ -229,10 +261,25 @@ BODT_API int bodt_mesh_tet_quality(const bodt_mesh *mesh, int measure,
 
 /* ------------------------------------------------------- modes and params */
 
+/*
+ * Modes.  Every move is guarded (see BODT_PARAM_MIN_STRETCH): no tet ends
+ * inverted or flat, no boundary triangle flips.  Boundary and interface
+ * vertices move only in BODT_MODE_BODT_BASIC and BODT_MODE_BODT, and then
+ * only in their tangent plane or along their feature line, which keeps the
+ * volume of every region (paper 000, Appendix B).
+ */
 enum bodt_mode {
     /* Guarded Laplacian smoothing: each interior vertex moves towards the
      * mean of its neighbours. */
-    BODT_MODE_LAPLACE = 1
+    BODT_MODE_LAPLACE = 1,
+    /* ODT (paper 000, Algorithm 1, eq. 3): interior vertices only. */
+    BODT_MODE_ODT = 2,
+    /* B-ODT basic: Algorithm 1 inside, Algorithm 2 (tangent plane, eq. 10)
+     * on every boundary and interface vertex. */
+    BODT_MODE_BODT_BASIC = 3,
+    /* B-ODT (the default): Algorithm 1 inside, Algorithm 2 on smooth surface
+     * vertices, Algorithm 3 along feature lines, corners fixed. */
+    BODT_MODE_BODT = 4
 };
 
 BODT_API int bodt_set_mode(bodt_mesh *mesh, int mode);
@@ -253,10 +300,20 @@ enum bodt_param {
      * touches ends with stretch below min(this, that tet's stretch before the
      * move): moves never create inverted, flat or near-flat tets. */
     BODT_PARAM_MIN_STRETCH = 3,
-    /* int 0/1, default 1: also refuse a move that lowers the smallest
-     * stretch among the tets the vertex touches, so no step makes the worst
-     * tet of the mesh worse.  0 lets a mode move as its formula says. */
-    BODT_PARAM_NEVER_WORSE = 4
+    /* int 0/1, default 1: also refuse (or halve) a move that makes the
+     * smallest dihedral angle among the tets the vertex touches smaller, or
+     * the largest larger, so no step makes the mesh's extreme angles worse.
+     * 0 lets a mode move as its formula says. */
+    BODT_PARAM_NEVER_WORSE = 4,
+    /* double, degrees, default 30: a surface edge whose two faces' normals
+     * differ by more than this is a feature edge (BODT_MODE_BODT). */
+    BODT_PARAM_FEATURE_ANGLE = 5,
+    /* double, default 0.2: tensor voting (paper 000 eq. 11) with eigenvalues
+     * mu0 >= mu1 >= mu2 makes a vertex a feature-line vertex when
+     * mu1 / mu0 exceeds this ... */
+    BODT_PARAM_EDGE_RATIO = 6,
+    /* double, default 0.2: ... and a corner when mu2 / mu0 exceeds this. */
+    BODT_PARAM_CORNER_RATIO = 7
 };
 
 BODT_API int bodt_set_param_int(bodt_mesh *mesh, int key, int32_t value);
@@ -274,6 +331,10 @@ typedef struct bodt_step_report {
     int32_t vertices_moved;
     int32_t moves_rejected; /* vertices whose every trial move was refused */
     int32_t moves_shortened;/* vertices moved by a halved step            */
+    /* vertices left in place because their local problem has no minimum
+     * (B-ODT: 4EF <= G^2 or E <= 0 in eq. 10, A <= 0 in Algorithm 3) */
+    int32_t not_positive_definite;
+    int32_t reserved0;
     double max_move;        /* largest displacement, in mesh units        */
     double min_dihedral;    /* after the step, degrees                    */
     double max_dihedral;

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The main job, end to end on a fresh Debian 12 machine: install what is
 # missing, build the `bodt` command (Release, in build/), and improve a small,
-# visibly bad tet mesh bundled in examples/data/ with Laplace smoothing,
-# printing the quality before and after.
+# visibly bad tet mesh bundled in examples/data/ with B-ODT smoothing (the
+# default mode), printing the quality before and after.
 #
 #   bash scripts/demo.sh [extra cmake -D options]
 set -euo pipefail
@@ -18,9 +18,9 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBODT_BUILD_TESTS=OFF "$@"
 cmake --build build --target bodt_cli -j"$(nproc)"
 
 in=examples/data/stellar_house2.node
-out=build/demo/stellar_house2-laplace.mesh
+out=build/demo/stellar_house2-bodt.mesh
 mkdir -p build/demo
 echo
-echo "== bodt improve $in $out --mode laplace --iterations 20"
+echo "== bodt improve $in $out --mode bodt --iterations 20"
 echo "   (Stellar's house2: 400 vertices, 1389 tets; angles in degrees)"
-build/bodt improve "$in" "$out" --mode laplace --iterations 20
+build/bodt improve "$in" "$out" --mode bodt --iterations 20

@@ -1144,9 +1144,15 @@ static void test_params(void **state) {
     const int E = BODT_ERR_INVALID_ARGUMENT;
     /* defaults */
     assert_int_equal(bodt_get_mode(h, &mode), BODT_OK);
-    assert_int_equal(mode, BODT_MODE_LAPLACE);
+    assert_int_equal(mode, BODT_MODE_BODT);
     assert_int_equal(bodt_get_param_double(h, BODT_PARAM_TOLERANCE, &dv), BODT_OK);
     assert_true(dv == 1e-6);
+    assert_int_equal(bodt_get_param_double(h, BODT_PARAM_FEATURE_ANGLE, &dv), BODT_OK);
+    assert_true(dv == 30.0);
+    assert_int_equal(bodt_get_param_double(h, BODT_PARAM_EDGE_RATIO, &dv), BODT_OK);
+    assert_true(dv == 0.2);
+    assert_int_equal(bodt_get_param_double(h, BODT_PARAM_CORNER_RATIO, &dv), BODT_OK);
+    assert_true(dv == 0.2);
     assert_int_equal(bodt_get_param_int(h, BODT_PARAM_BACKTRACK_STEPS, &iv), BODT_OK);
     assert_int_equal(iv, 4);
     assert_int_equal(bodt_get_param_double(h, BODT_PARAM_MIN_STRETCH, &dv), BODT_OK);
@@ -1167,6 +1173,15 @@ static void test_params(void **state) {
     assert_int_equal(bodt_set_param_int(h, BODT_PARAM_NEVER_WORSE, 0), BODT_OK);
     assert_int_equal(bodt_get_param_int(h, BODT_PARAM_NEVER_WORSE, &iv), BODT_OK);
     assert_int_equal(iv, 0);
+    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_FEATURE_ANGLE, 45.0), BODT_OK);
+    assert_int_equal(bodt_get_param_double(h, BODT_PARAM_FEATURE_ANGLE, &dv), BODT_OK);
+    assert_true(dv == 45.0);
+    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_EDGE_RATIO, 0.3), BODT_OK);
+    assert_int_equal(bodt_get_param_double(h, BODT_PARAM_EDGE_RATIO, &dv), BODT_OK);
+    assert_true(dv == 0.3);
+    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_CORNER_RATIO, 0.4), BODT_OK);
+    assert_int_equal(bodt_get_param_double(h, BODT_PARAM_CORNER_RATIO, &dv), BODT_OK);
+    assert_true(dv == 0.4);
     assert_string_equal(bodt_mesh_last_error(h), "");
 
     /* the wrong type is refused, and the value is kept */
@@ -1187,6 +1202,10 @@ static void test_params(void **state) {
     assert_int_equal(bodt_set_param_double(h, BODT_PARAM_MIN_STRETCH, 2.0), E);
     assert_int_equal(bodt_set_param_int(h, BODT_PARAM_NEVER_WORSE, 2), E);
     assert_int_equal(bodt_set_param_int(h, BODT_PARAM_NEVER_WORSE, -1), E);
+    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_FEATURE_ANGLE, 181.0), E);
+    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_EDGE_RATIO, -0.5), E);
+    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_CORNER_RATIO, 1.5), E);
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_FEATURE_ANGLE, 30), E);
     /* unknown keys */
     assert_int_equal(bodt_set_param_int(h, 0, 1), E);
     assert_contains(bodt_mesh_last_error(h), "0");
@@ -1210,10 +1229,15 @@ static void test_params(void **state) {
     assert_int_equal(iv, 0);
 
     /* modes */
-    assert_int_equal(bodt_set_mode(h, BODT_MODE_LAPLACE), BODT_OK);
+    const int modes[] = {BODT_MODE_ODT, BODT_MODE_BODT_BASIC, BODT_MODE_BODT, BODT_MODE_LAPLACE};
+    for (int k = 0; k < 4; ++k) {
+        assert_int_equal(bodt_set_mode(h, modes[k]), BODT_OK);
+        assert_int_equal(bodt_get_mode(h, &mode), BODT_OK);
+        assert_int_equal(mode, modes[k]);
+    }
     assert_int_equal(bodt_set_mode(h, 0), E);
     assert_contains(bodt_mesh_last_error(h), "mode");
-    assert_int_equal(bodt_set_mode(h, 2), E);
+    assert_int_equal(bodt_set_mode(h, 5), E);
     assert_int_equal(bodt_set_mode(h, -1), E);
     assert_int_equal(bodt_get_mode(h, &mode), BODT_OK);
     assert_int_equal(mode, BODT_MODE_LAPLACE);

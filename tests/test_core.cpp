@@ -321,14 +321,14 @@ void check_one_rings(const bodt::TetMesh& mesh, const bodt::BoundarySurface& sur
 void test_one_ring_box(void**) {
     Built bm;
     build(bm, 3, 1.0, nullptr, 0.25, 5);
-    check_one_rings(bm.b.mesh, bm.b.surface, "box");
+    check_one_rings(bm.b.mesh, bm.b.surfaces.surface(0), "box");
     tm_free(&bm.m);
 }
 
 void test_one_ring_l_shape(void**) {
     Built bm;
     build(bm, 4, 1.0, keep_l_shape, 0.25, 6);
-    check_one_rings(bm.b.mesh, bm.b.surface, "L-shape");
+    check_one_rings(bm.b.mesh, bm.b.surfaces.surface(0), "L-shape");
     tm_free(&bm.m);
 }
 
@@ -350,7 +350,7 @@ void test_one_ring_ball(void**) {
     // every boundary vertex is on the unit sphere
     for (int32_t v = 0; v < bm.m.nverts; ++v)
         if (bm.m.boundary[v]) assert_near(bm.b.mesh.points[v].norm(), 1.0, 1e-12);
-    check_one_rings(bm.b.mesh, bm.b.surface, "ball");
+    check_one_rings(bm.b.mesh, bm.b.surfaces.surface(0), "ball");
     tm_free(&bm.m);
 }
 
@@ -367,7 +367,7 @@ void test_one_ring_negative_input(void**) {
     a.tets = m.tets;
     const bodt::BuiltMesh b = bodt::build_mesh(a);
     assert_true(b.flipped);
-    check_one_rings(b.mesh, b.surface, "negative L-shape");
+    check_one_rings(b.mesh, b.surfaces.surface(0), "negative L-shape");
     tm_free(&m);
 }
 
@@ -391,7 +391,7 @@ void expect_surface_refused(tm_cube_filter keep, const char* part) {
     bodt::BoundarySurface surface;
     bool thrown = false;
     try {
-        surface.build(mesh, 0);
+        surface.build(mesh, 0, 0);
     } catch (const bodt::Error& e) {
         thrown = true;
         assert_int_equal(e.status(), BODT_ERR_BAD_MESH);

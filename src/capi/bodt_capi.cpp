@@ -16,7 +16,7 @@
 
 struct bodt_mesh {
     bodt::TetMesh mesh;
-    bodt::BoundarySurface surface;
+    bodt::RegionSurfaces surfaces;
     bodt::Improver improver;
     int index_base = 0;
     bool flipped = false;
@@ -93,7 +93,7 @@ bodt_mesh* make_handle(const bodt::MeshArrays& arrays) {
     bodt::BuiltMesh built = bodt::build_mesh(arrays);
     auto* h = new bodt_mesh;
     h->mesh = std::move(built.mesh);
-    h->surface = std::move(built.surface);
+    h->surfaces = std::move(built.surfaces);
     h->index_base = arrays.index_base;
     h->flipped = built.flipped;
     return h;
@@ -107,6 +107,66 @@ bool is_mesh_face(const bodt::TetMesh& mesh, const bodt::FaceKey& k) {
         if (has(k.v[1]) && has(k.v[2])) return true;
     }
     return false;
+}
+
+// New region ids: the region surfaces are rebuilt first, so a failure leaves
+// everything as it was.
+void apply_regions(bodt_mesh* h, const int32_t* region_ids) {
+    require(region_ids != nullptr, "region_ids is NULL");
+    std::vector<int32_t> old(region_ids, region_ids + h->mesh.tets.size());
+    h->mesh.regions.swap(old);
+    bodt::RegionSurfaces surfaces;
+    try {
+        surfaces.build(h->mesh, h->index_base, bodt::BoundarySurface::Strictness::Tolerant);
+    } catch (...) {
+        h->mesh.regions.swap(old);
+        throw;
+    }
+    h->surfaces = std::move(surfaces);
+    h->mesh.update_vertex_flags();
+    h->improver.invalidate_classes();
+}
+
+// True when some boundary or interface face has the edge (a, b).
+bool is_surface_edge(const bodt::TetMesh& mesh, int32_t a, int32_t b) {
+    for (const int32_t* t = mesh.star_begin(a); t != mesh.star_end(a); ++t) {
+        const bodt::Tet& q = mesh.tets[*t];
+        for (int i = 0; i < 4; ++i) {
+            if (q[i] == a || q[i] == b || !mesh.is_surface_face(*t, i)) continue;
+            if (std::find(q.begin(), q.end(), b) != q.end()) return true;
+        }
+    }
+    return false;
+}
+
+void apply_feature_edges(bodt_mesh* h, int32_t nedges, const int32_t* edges) {
+    require(nedges >= 0, "nedges must not be negative");
+    require(nedges == 0 || edges != nullptr, "edges is NULL");
+    const bodt::TetMesh& mesh = h->mesh;
+    const int base = h->index_base;
+    bodt::EdgeSet fresh;
+    for (int32_t e = 0; e < nedges; ++e) {
+        int32_t v[2];
+        for (int k = 0; k < 2; ++k) {
+            v[k] = edges[2 * static_cast<size_t>(e) + k];
+            bodt::check_vertex_index(v[k], mesh.num_vertices(), base, "feature edge", e);
+            v[k] -= base;
+        }
+        if (v[0] == v[1] || !is_surface_edge(mesh, v[0], v[1]))
+            throw Error(BODT_ERR_INVALID_ARGUMENT, "feature edge " + std::to_string(e + base) + " (" +
+                                                       std::to_string(v[0] + base) + ", " +
+                                                       std::to_string(v[1] + base) +
+                                                       ") is not an edge of a boundary or interface face");
+        fresh.insert(bodt::edge_key(v[0], v[1]));
+    }
+    h->mesh.feature_edges = std::move(fresh);
+    h->improver.invalidate_classes();
+}
+
+std::vector<bodt::EdgeKey> sorted_feature_edges(const bodt::TetMesh& mesh) {
+    std::vector<bodt::EdgeKey> keys(mesh.feature_edges.begin(), mesh.feature_edges.end());
+    std::sort(keys.begin(), keys.end());
+    return keys;
 }
 
 void apply_face_markers(bodt_mesh* h, int32_t nfaces, const int32_t* triangles, const int32_t* markers) {
@@ -135,6 +195,7 @@ void apply_face_markers(bodt_mesh* h, int32_t nfaces, const int32_t* triangles, 
     }
     h->mesh.face_markers = std::move(fresh);
     h->mesh.update_vertex_flags();
+    h->improver.invalidate_classes();
 }
 
 void apply_fixed(bodt_mesh* h, int32_t nfixed, const int32_t* vertices) {
@@ -145,6 +206,7 @@ void apply_fixed(bodt_mesh* h, int32_t nfixed, const int32_t* vertices) {
         bodt::check_vertex_index(vertices[k], mesh.num_vertices(), h->index_base, "fixed vertex", k);
     for (uint8_t& f : mesh.vflags) f &= static_cast<uint8_t>(~bodt::kFixed);
     for (int32_t k = 0; k < nfixed; ++k) mesh.vflags[vertices[k] - h->index_base] |= bodt::kFixed;
+    h->improver.invalidate_classes();
 }
 
 void fill_step_report(const bodt::StepReport& r, bodt_step_report* out) {
@@ -154,6 +216,7 @@ void fill_step_report(const bodt::StepReport& r, bodt_step_report* out) {
     full.vertices_moved = r.vertices_moved;
     full.moves_rejected = r.moves_rejected;
     full.moves_shortened = r.moves_shortened;
+    full.not_positive_definite = r.not_positive_definite;
     full.max_move = r.max_move;
     full.min_dihedral = r.min_dihedral;
     full.max_dihedral = r.max_dihedral;
@@ -175,6 +238,7 @@ bodt::MeshData to_mesh_data(const bodt_mesh* h) {
     }
     for (int32_t v = 0; v < mesh.num_vertices(); ++v)
         if (mesh.vflags[v] & bodt::kFixed) d.fixed.push_back(v);
+    for (bodt::EdgeKey k : sorted_feature_edges(mesh)) d.feature_edges.insert(d.feature_edges.end(), {bodt::edge_first(k), bodt::edge_second(k)});
     return d;
 }
 
@@ -194,13 +258,11 @@ bodt_mesh* from_mesh_data(const bodt::MeshData& d, uint32_t flags) {
     arrays.flags = flags;
     try {
         std::unique_ptr<bodt_mesh> h(make_handle(arrays));
-        if (!d.regions.empty()) {
-            h->mesh.regions = d.regions;
-            h->mesh.update_vertex_flags();
-        }
+        if (!d.regions.empty()) apply_regions(h.get(), d.regions.data());
         apply_face_markers(h.get(), static_cast<int32_t>(d.tri_markers.size()), d.triangles.data(),
                            d.tri_markers.data());
         apply_fixed(h.get(), static_cast<int32_t>(d.fixed.size()), d.fixed.data());
+        apply_feature_edges(h.get(), static_cast<int32_t>(d.feature_edges.size() / 2), d.feature_edges.data());
         h->index_base = 0;
         return h.release();
     } catch (const Error& e) {
@@ -268,11 +330,11 @@ void bodt_mesh_destroy(bodt_mesh* mesh) { delete mesh; }
 const char* bodt_mesh_last_error(const bodt_mesh* mesh) { return error_slot(mesh).c_str(); }
 
 int bodt_mesh_set_regions(bodt_mesh* mesh, const int32_t* region_ids) {
-    return with_mesh(mesh, [&] {
-        require(region_ids != nullptr, "region_ids is NULL");
-        mesh->mesh.regions.assign(region_ids, region_ids + mesh->mesh.tets.size());
-        mesh->mesh.update_vertex_flags();
-    });
+    return with_mesh(mesh, [&] { apply_regions(mesh, region_ids); });
+}
+
+int bodt_mesh_set_feature_edges(bodt_mesh* mesh, int32_t nedges, const int32_t* edges) {
+    return with_mesh(mesh, [&] { apply_feature_edges(mesh, nedges, edges); });
 }
 
 int bodt_mesh_set_boundary_faces(bodt_mesh* mesh, int32_t nfaces, const int32_t* triangles, const int32_t* markers) {
@@ -344,6 +406,29 @@ int bodt_mesh_get_fixed_vertices(const bodt_mesh* mesh, int32_t* is_fixed, size_
     });
 }
 
+int bodt_mesh_get_feature_edges(const bodt_mesh* mesh, int32_t* nedges, int32_t* edges, size_t capacity) {
+    return with_mesh(mesh, [&] {
+        const auto keys = sorted_feature_edges(mesh->mesh);
+        if (edges) {
+            require_capacity(capacity, keys.size(), "feature edges");
+            for (size_t e = 0; e < keys.size(); ++e) {
+                edges[2 * e] = bodt::edge_first(keys[e]) + mesh->index_base;
+                edges[2 * e + 1] = bodt::edge_second(keys[e]) + mesh->index_base;
+            }
+        }
+        if (nedges) *nedges = static_cast<int32_t>(keys.size());
+    });
+}
+
+int bodt_mesh_get_vertex_classes(const bodt_mesh* mesh, int32_t* classes, size_t capacity) {
+    return with_mesh(mesh, [&] {
+        require(classes != nullptr, "classes is NULL");
+        require_capacity(capacity, mesh->mesh.points.size(), "classes");
+        const bodt::VertexClasses& c = mesh->improver.classes(mesh->mesh, mesh->surfaces);
+        for (size_t v = 0; v < c.cls.size(); ++v) classes[v] = static_cast<int32_t>(c.cls[v]);
+    });
+}
+
 int bodt_dihedral_bin_edges(double* edges, size_t capacity) {
     if (!edges || capacity < bodt::kDihedralBins + 1) return BODT_ERR_INVALID_ARGUMENT;
     std::copy(std::begin(bodt::kDihedralBinEdges), std::end(bodt::kDihedralBinEdges), edges);
@@ -402,11 +487,11 @@ int bodt_get_mode(const bodt_mesh* mesh, int* mode) {
 }
 
 int bodt_set_param_int(bodt_mesh* mesh, int key, int32_t value) {
-    return with_mesh(mesh, [&] { bodt::set_param_int(mesh->improver.params(), key, value); });
+    return with_mesh(mesh, [&] { mesh->improver.set_param_int(key, value); });
 }
 
 int bodt_set_param_double(bodt_mesh* mesh, int key, double value) {
-    return with_mesh(mesh, [&] { bodt::set_param_double(mesh->improver.params(), key, value); });
+    return with_mesh(mesh, [&] { mesh->improver.set_param_double(key, value); });
 }
 
 int bodt_get_param_int(const bodt_mesh* mesh, int key, int32_t* value) {
@@ -426,7 +511,7 @@ int bodt_get_param_double(const bodt_mesh* mesh, int key, double* value) {
 int bodt_step(bodt_mesh* mesh, bodt_step_report* report) {
     return with_mesh(mesh, [&] {
         if (report) require(report->size >= sizeof(size_t), "set report->size to sizeof(bodt_step_report)");
-        const bodt::StepReport r = mesh->improver.step(mesh->mesh);
+        const bodt::StepReport r = mesh->improver.step(mesh->mesh, mesh->surfaces);
         if (report) fill_step_report(r, report);
     });
 }
@@ -436,7 +521,7 @@ int bodt_run(bodt_mesh* mesh, int32_t max_steps, bodt_step_callback callback, vo
         require(max_steps > 0, "max_steps must be positive");
         const double scale = mesh->mesh.bbox_diagonal();
         for (int32_t k = 0; k < max_steps; ++k) {
-            const bodt::StepReport r = mesh->improver.step(mesh->mesh);
+            const bodt::StepReport r = mesh->improver.step(mesh->mesh, mesh->surfaces);
             if (callback) {
                 bodt_step_report report{};
                 report.size = sizeof(report);

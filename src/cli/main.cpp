@@ -24,7 +24,14 @@ const char* kUsageText =
     "      IN may be a tet mesh (.mesh, .node, .ele) or, when bodt is built with\n"
     "      TetGen, a closed surface (.off, .stl, .ply) or PLC (.poly), which is first\n"
     "      tetrahedralized like `tetgen -p` (no quality refinement).\n"
-    "      --mode MODE       laplace (default)\n"
+    "      --mode MODE       bodt (default): B-ODT, paper 000 Algorithms 1-3: ODT\n"
+    "                          inside, boundary vertices in their tangent plane,\n"
+    "                          feature-line vertices along the line, corners fixed\n"
+    "                        bodt-basic: ODT inside, every boundary vertex in its\n"
+    "                          tangent plane (Algorithms 1 and 2)\n"
+    "                        odt: interior vertices only (Algorithm 1)\n"
+    "                        laplace: interior vertices to their neighbours' mean\n"
+    "                      Boundary moves keep the volume; no mode inverts a tet.\n"
     "      --iterations N    at most N improvement steps (default 20); stops\n"
     "                        earlier when the vertices stop moving\n"
     "  quality MESH [--json]\n"
@@ -135,9 +142,16 @@ int cmd_quality(const std::vector<std::string>& args) {
     return kOk;
 }
 
+struct ModeName {
+    const char* name;
+    int mode;
+};
+constexpr ModeName kModes[] = {
+    {"bodt", BODT_MODE_BODT}, {"bodt-basic", BODT_MODE_BODT_BASIC}, {"odt", BODT_MODE_ODT}, {"laplace", BODT_MODE_LAPLACE}};
+
 int cmd_improve(const std::vector<std::string>& args) {
     std::vector<std::string> files;
-    int mode = BODT_MODE_LAPLACE;
+    int mode = BODT_MODE_BODT;
     long iterations = 20;
     for (size_t k = 0; k < args.size(); ++k) {
         const std::string& a = args[k];
@@ -145,8 +159,11 @@ int cmd_improve(const std::vector<std::string>& args) {
             if (k + 1 == args.size()) return usage_error(a + " needs a value");
             const std::string value = args[++k];
             if (a == "--mode") {
-                if (value != "laplace") return usage_error("unknown mode '" + value + "' (known: laplace)");
-                mode = BODT_MODE_LAPLACE;
+                const ModeName* found = nullptr;
+                for (const ModeName& m : kModes)
+                    if (value == m.name) found = &m;
+                if (!found) return usage_error("unknown mode '" + value + "' (known: bodt, bodt-basic, odt, laplace)");
+                mode = found->mode;
             } else {
                 char* end = nullptr;
                 iterations = std::strtol(value.c_str(), &end, 10);

@@ -3,6 +3,7 @@
 //   Tetrahedra   a b c d ref      ref -> region id
 //   Triangles    a b c ref        ref -> face marker
 //   Corners, RequiredVertices     -> fixed vertices
+//   Edges a b ref + Ridges e      -> feature edges (the ridges among the edges)
 // Other sections of the format are skipped by their known record sizes; an
 // unknown keyword is an error.  Indices in the file are 1-based.
 #include "io/mesh_io.hpp"
@@ -19,7 +20,7 @@ namespace bodt {
 namespace {
 
 // Sections read for their data.
-enum class Section { Vertices, Tetrahedra, Triangles, Fixed, Skip };
+enum class Section { Vertices, Tetrahedra, Triangles, Fixed, Edges, Ridges, Skip };
 
 struct Keyword {
     const char* name;
@@ -33,8 +34,8 @@ constexpr Keyword kKeywords[] = {
     {"Triangles", Section::Triangles, 4},
     {"Corners", Section::Fixed, 1},
     {"RequiredVertices", Section::Fixed, 1},
-    {"Edges", Section::Skip, 3},
-    {"Ridges", Section::Skip, 1},
+    {"Edges", Section::Edges, 3},
+    {"Ridges", Section::Ridges, 1},
     {"RequiredEdges", Section::Skip, 1},
     {"RequiredTriangles", Section::Skip, 1},
     {"RequiredTetrahedra", Section::Skip, 1},
@@ -81,6 +82,9 @@ MeshData read_medit(const std::string& path) {
     d.base = 1;
     int64_t nverts = -1;
     bool saw_tets = false;
+    std::vector<int32_t> edges;       // 2 per edge of the Edges section
+    std::vector<int64_t> ridges;      // 1-based indices into edges
+    int64_t ridges_line = 0;
     std::string_view token;
     if (!in.next(token) || token != "MeshVersionFormatted")
         in.fail("not a Medit mesh: it must start with MeshVersionFormatted");
@@ -129,6 +133,17 @@ MeshData read_medit(const std::string& path) {
             case Section::Fixed:
                 for (int64_t k = 0; k < n; ++k) d.fixed.push_back(read_vertex(in, nverts, key->name));
                 break;
+            case Section::Edges:
+                for (int64_t e = 0; e < n; ++e) {
+                    edges.push_back(read_vertex(in, nverts, "edge vertex"));
+                    edges.push_back(read_vertex(in, nverts, "edge vertex"));
+                    read_ref(in, "edge reference");
+                }
+                break;
+            case Section::Ridges:
+                ridges_line = in.line();
+                for (int64_t k = 0; k < n; ++k) ridges.push_back(in.read_int("a ridge"));
+                break;
             case Section::Skip:
                 for (int64_t k = 0; k < n * key->fields; ++k) in.expect(key->name);
                 break;
@@ -136,6 +151,13 @@ MeshData read_medit(const std::string& path) {
     }
     if (nverts < 0) in.fail("no Vertices section");
     if (!saw_tets) in.fail("no Tetrahedra section");
+    const int64_t nedges = static_cast<int64_t>(edges.size() / 2);
+    for (int64_t r : ridges) {
+        if (r < 1 || r > nedges)
+            throw Error(BODT_ERR_IO, path + ":" + std::to_string(ridges_line) + ": ridge " + std::to_string(r) +
+                                         " is not one of the " + std::to_string(nedges) + " edges");
+        d.feature_edges.insert(d.feature_edges.end(), {edges[2 * (r - 1)], edges[2 * (r - 1) + 1]});
+    }
     return d;
 }
 
@@ -158,6 +180,14 @@ void write_medit(const std::string& path, const MeshData& d) {
     if (!d.fixed.empty()) {
         std::fprintf(o, "\nRequiredVertices\n%zu\n", d.fixed.size());
         for (int32_t v : d.fixed) std::fprintf(o, "%d\n", v + shift);
+    }
+    const size_t ne = d.feature_edges.size() / 2;
+    if (ne > 0) {
+        std::fprintf(o, "\nEdges\n%zu\n", ne);
+        for (size_t e = 0; e < ne; ++e)
+            std::fprintf(o, "%d %d 0\n", d.feature_edges[2 * e] + shift, d.feature_edges[2 * e + 1] + shift);
+        std::fprintf(o, "\nRidges\n%zu\n", ne);
+        for (size_t e = 0; e < ne; ++e) std::fprintf(o, "%zu\n", e + 1);
     }
     std::fprintf(o, "\nEnd\n");
     out.close();

@@ -20,6 +20,7 @@ struct MeshData {
     std::vector<int32_t> triangles;    // 3 per marked face
     std::vector<int32_t> tri_markers;  // one per marked face
     std::vector<int32_t> fixed;        // fixed vertices
+    std::vector<int32_t> feature_edges;  // 2 per feature edge
 };
 
 enum class MeshFormat { Medit, TetGen };

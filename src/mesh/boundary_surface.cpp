@@ -3,6 +3,7 @@
 #include "bodt.h"
 #include "common/error.hpp"
 
+#include <algorithm>
 #include <string>
 
 namespace bodt {
@@ -13,11 +14,15 @@ struct OrientedFace {
     std::array<int32_t, 3> v;
 };
 
-std::vector<OrientedFace> boundary_faces(const TetMesh& mesh) {
+std::vector<OrientedFace> region_faces(const TetMesh& mesh, int32_t region) {
     std::vector<OrientedFace> faces;
-    for (int32_t t = 0; t < mesh.num_tets(); ++t)
-        for (int i = 0; i < 4; ++i)
-            if (mesh.neighbors[t][i] < 0) faces.push_back({mesh.outward_face(t, i)});
+    for (int32_t t = 0; t < mesh.num_tets(); ++t) {
+        if (mesh.regions[t] != region) continue;
+        for (int i = 0; i < 4; ++i) {
+            const int32_t s = mesh.neighbors[t][i];
+            if (s < 0 || mesh.regions[s] != region) faces.push_back({mesh.outward_face(t, i)});
+        }
+    }
     return faces;
 }
 
@@ -49,11 +54,18 @@ void check_link(int32_t v, std::vector<std::pair<int32_t, int32_t>>& link, int b
 
 }  // namespace
 
-void BoundarySurface::build(const TetMesh& mesh, int base) {
-    const auto faces = boundary_faces(mesh);
-    const int32_t nv = mesh.num_vertices();
+int32_t BoundarySurface::surface_vertex(int32_t v) const {
+    const auto it = std::lower_bound(to_tet_.begin(), to_tet_.end(), v);
+    return it != to_tet_.end() && *it == v ? static_cast<int32_t>(it - to_tet_.begin()) : -1;
+}
 
-    // Vertex -> boundary faces, for the link check and for the growth order.
+void BoundarySurface::build(const TetMesh& mesh, int base, int32_t region, Strictness strictness) {
+    const auto faces = region_faces(mesh, region);
+    const int32_t nf = static_cast<int32_t>(faces.size());
+    const int32_t nv = mesh.num_vertices();
+    const bool strict = strictness == Strictness::Strict;
+
+    // Vertex -> faces, for the link check and for the growth order.
     std::vector<int32_t> offset(static_cast<size_t>(nv) + 1, 0), incident;
     for (const auto& f : faces)
         for (int32_t v : f.v) ++offset[v + 1];
@@ -61,9 +73,12 @@ void BoundarySurface::build(const TetMesh& mesh, int base) {
     incident.resize(faces.size() * 3);
     {
         std::vector<int32_t> fill(offset.begin(), offset.end() - 1);
-        for (int32_t f = 0; f < static_cast<int32_t>(faces.size()); ++f)
+        for (int32_t f = 0; f < nf; ++f)
             for (int32_t v : faces[f].v) incident[fill[v]++] = f;
     }
+    // Where the surface is not a manifold: refuse, or (tolerant) leave out
+    // every face around that vertex.
+    std::vector<char> dropped(faces.size(), 0);
     std::vector<std::pair<int32_t, int32_t>> link;
     for (int32_t v = 0; v < nv; ++v) {
         if (offset[v] == offset[v + 1]) continue;
@@ -73,49 +88,67 @@ void BoundarySurface::build(const TetMesh& mesh, int base) {
             const int r = f[0] == v ? 0 : (f[1] == v ? 1 : 2);
             link.emplace_back(f[(r + 1) % 3], f[(r + 2) % 3]);
         }
-        check_link(v, link, base);
+        try {
+            check_link(v, link, base);
+        } catch (const Error&) {
+            if (strict) throw;
+            for (int32_t k = offset[v]; k < offset[v + 1]; ++k) dropped[incident[k]] = 1;
+        }
     }
 
     surface_.clean();
     to_tet_.clear();
-    from_tet_.assign(static_cast<size_t>(nv), -1);
+    blocked_.clear();
     for (int32_t v = 0; v < nv; ++v)
         if (offset[v] != offset[v + 1]) {
-            from_tet_[v] = static_cast<int32_t>(surface_.add_vertex(SurfaceMesh::Point(0, 0, 0)).idx());
+            surface_.add_vertex(SurfaceMesh::Point(0, 0, 0));
             to_tet_.push_back(v);
         }
 
     // Add faces breadth-first across shared vertices, so each vertex's fan
     // grows from one side and OpenMesh never has to re-link patches.
-    std::vector<char> added(faces.size(), 0);
+    std::vector<char> queued(faces.size(), 0);
     std::vector<int32_t> queue;
-    for (int32_t seed = 0; seed < static_cast<int32_t>(faces.size()); ++seed) {
-        if (added[seed]) continue;
-        added[seed] = 1;
+    for (int32_t seed = 0; seed < nf; ++seed) {
+        if (queued[seed]) continue;
+        queued[seed] = 1;
         queue.assign(1, seed);
         for (size_t head = 0; head < queue.size(); ++head) {
-            const auto& f = faces[queue[head]].v;
-            const auto fh = surface_.add_face(SurfaceMesh::VertexHandle(from_tet_[f[0]]),
-                                              SurfaceMesh::VertexHandle(from_tet_[f[1]]),
-                                              SurfaceMesh::VertexHandle(from_tet_[f[2]]));
-            if (!fh.is_valid())
-                throw Error(BODT_ERR_BAD_MESH, "the boundary face (" + std::to_string(f[0] + base) + ", " +
-                                                   std::to_string(f[1] + base) + ", " + std::to_string(f[2] + base) +
-                                                   ") does not fit a manifold boundary surface");
+            const int32_t face = queue[head];
+            const auto& f = faces[face].v;
+            if (!dropped[face]) {
+                const auto fh = surface_.add_face(SurfaceMesh::VertexHandle(surface_vertex(f[0])),
+                                                  SurfaceMesh::VertexHandle(surface_vertex(f[1])),
+                                                  SurfaceMesh::VertexHandle(surface_vertex(f[2])));
+                if (!fh.is_valid()) {
+                    if (strict)
+                        throw Error(BODT_ERR_BAD_MESH, "the boundary face (" + std::to_string(f[0] + base) + ", " +
+                                                           std::to_string(f[1] + base) + ", " +
+                                                           std::to_string(f[2] + base) +
+                                                           ") does not fit a manifold boundary surface");
+                    dropped[face] = 1;
+                }
+            }
             for (int32_t v : f)
                 for (int32_t k = offset[v]; k < offset[v + 1]; ++k)
-                    if (!added[incident[k]]) {
-                        added[incident[k]] = 1;
+                    if (!queued[incident[k]]) {
+                        queued[incident[k]] = 1;
                         queue.push_back(incident[k]);
                     }
         }
     }
+    // A vertex of a left-out face has an open ring.
+    for (int32_t f = 0; f < nf; ++f)
+        if (dropped[f]) blocked_.insert(blocked_.end(), faces[f].v.begin(), faces[f].v.end());
+    std::sort(blocked_.begin(), blocked_.end());
+    blocked_.erase(std::unique(blocked_.begin(), blocked_.end()), blocked_.end());
 }
 
 void BoundarySurface::one_ring(int32_t v, std::vector<int32_t>& ring) const {
     ring.clear();
-    if (v < 0 || v >= static_cast<int32_t>(from_tet_.size()) || from_tet_[v] < 0) return;
-    const SurfaceMesh::VertexHandle vh(from_tet_[v]);
+    const int32_t sv = surface_vertex(v);
+    if (sv < 0) return;
+    const SurfaceMesh::VertexHandle vh(sv);
     // For the outgoing halfedge h = (v -> y_i) of face (v, y_i, y_{i+1}), the
     // next outgoing halfedge (v -> y_{i+1}) is opposite(prev(h)).
     const auto start = surface_.halfedge_handle(vh);

@@ -157,7 +157,7 @@ BuiltMesh build_mesh(const MeshArrays& in) {
     out.mesh.build_topology(in.index_base);
     if (out.num_inverted > 0) out.mesh.find_reversed_tets(in.index_base);
     check_sides(out.mesh, in.index_base);
-    out.surface.build(out.mesh, in.index_base);
+    out.surfaces.build(out.mesh, in.index_base, BoundarySurface::Strictness::Strict);  // the domain boundary
     return out;
 }
 

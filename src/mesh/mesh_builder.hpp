@@ -3,7 +3,7 @@
 // offending entities in the caller's index base.
 #pragma once
 
-#include "mesh/boundary_surface.hpp"
+#include "mesh/region_surfaces.hpp"
 #include "mesh/tet_mesh.hpp"
 
 #include <cstdint>
@@ -21,7 +21,7 @@ struct MeshArrays {
 
 struct BuiltMesh {
     TetMesh mesh;
-    BoundarySurface surface;
+    RegionSurfaces surfaces;  // one region until the caller sets regions
     bool flipped = false;        // the caller's tets are negatively oriented
     int32_t num_inverted = 0;    // accepted inverted tets (with the flag)
 };

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace bodt {
@@ -34,6 +35,16 @@ struct FaceKeyHash {
     }
 };
 
+// An undirected edge as (smaller, larger) vertex index in one integer.
+using EdgeKey = uint64_t;
+inline EdgeKey edge_key(int32_t a, int32_t b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
+}
+inline int32_t edge_first(EdgeKey k) { return static_cast<int32_t>(k >> 32); }
+inline int32_t edge_second(EdgeKey k) { return static_cast<int32_t>(k & 0xffffffffu); }
+using EdgeSet = std::unordered_set<EdgeKey>;
+
 enum VertexFlag : uint8_t {
     kOnBoundary = 1,   // on a face of one tet
     kOnInterface = 2,  // on a face between regions or a marked interior face
@@ -56,6 +67,7 @@ public:
     std::vector<int32_t> vt_offset, vt_tets; // CSR: tets of vertex v are vt_tets[vt_offset[v] .. vt_offset[v+1])
     std::vector<uint8_t> vflags;
     std::unordered_map<FaceKey, int32_t, FaceKeyHash> face_markers;
+    EdgeSet feature_edges;  // given by the caller (or a file's ridges)
     // Tets (accepted as inverted) whose vertex order is reversed against
     // their neighbours'; empty when there are none.  Faces are oriented by
     // the corrected order, so the surfaces stay consistent.
@@ -101,10 +113,12 @@ public:
     // Axis-aligned bounding-box diagonal of the used vertices.
     double bbox_diagonal() const;
 
+    // Face i of tet t is on the domain boundary, between regions, or marked.
+    bool is_surface_face(int32_t t, int i) const;
+
 private:
     void build_incidence();
     void build_neighbors(int base);
-    bool is_surface_face(int32_t t, int i) const;
     bool is_listed_face(int32_t t, int i) const;
 };
 

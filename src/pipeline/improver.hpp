@@ -1,7 +1,10 @@
 // The improvement pipeline of a mesh handle: the current mode, its
-// parameters, and `step`, one Gauss-Seidel sweep over the movable vertices.
+// parameters, the vertex classes the mode works with, and `step`, one
+// Gauss-Seidel sweep over the vertices.
 #pragma once
 
+#include "features/vertex_classes.hpp"
+#include "mesh/region_surfaces.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "pipeline/params.hpp"
 
@@ -14,6 +17,7 @@ struct StepReport {
     int32_t vertices_moved = 0;
     int32_t moves_rejected = 0;
     int32_t moves_shortened = 0;
+    int32_t not_positive_definite = 0;
     double max_move = 0.0;
     double min_dihedral = 0.0, max_dihedral = 0.0, min_stretch = 0.0;
 };
@@ -22,18 +26,28 @@ class Improver {
 public:
     int mode() const { return mode_; }
     void set_mode(int mode);  // throws Error for an unknown mode
-    Params& params() { return params_; }
     const Params& params() const { return params_; }
+    void set_param_int(int key, int32_t value);
+    void set_param_double(int key, double value);
+
+    // The classes are computed when first needed and kept until the mesh's
+    // regions, markers, fixed vertices or feature edges change (the caller
+    // says so here) or the mode or a feature parameter does.
+    void invalidate_classes() { classes_valid_ = false; }
+    const VertexClasses& classes(const TetMesh& mesh, const RegionSurfaces& surfaces) const;
 
     // One sweep.  If anything throws, the mesh is restored as it was.
-    StepReport step(TetMesh& mesh);
+    StepReport step(TetMesh& mesh, const RegionSurfaces& surfaces);
 
 private:
     void sweep_laplace(TetMesh& mesh, StepReport& report) const;
+    void sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report);
 
-    int mode_ = 1;  // BODT_MODE_LAPLACE
+    int mode_ = 4;  // BODT_MODE_BODT
     Params params_;
     int32_t steps_done_ = 0;
+    mutable VertexClasses classes_;  // a cache: computing it changes no result
+    mutable bool classes_valid_ = false;
 };
 
 }  // namespace bodt

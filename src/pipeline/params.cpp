@@ -24,6 +24,9 @@ constexpr Info kParams[] = {
     {BODT_PARAM_BACKTRACK_STEPS, "BODT_PARAM_BACKTRACK_STEPS", Type::Int, 0, 50},
     {BODT_PARAM_MIN_STRETCH, "BODT_PARAM_MIN_STRETCH", Type::Double, 0.0, 0.5},
     {BODT_PARAM_NEVER_WORSE, "BODT_PARAM_NEVER_WORSE", Type::Int, 0, 1},
+    {BODT_PARAM_FEATURE_ANGLE, "BODT_PARAM_FEATURE_ANGLE", Type::Double, 0.0, 180.0},
+    {BODT_PARAM_EDGE_RATIO, "BODT_PARAM_EDGE_RATIO", Type::Double, 0.0, 1.0},
+    {BODT_PARAM_CORNER_RATIO, "BODT_PARAM_CORNER_RATIO", Type::Double, 0.0, 1.0},
 };
 
 const Info& lookup(int key, Type want) {
@@ -45,6 +48,17 @@ void check_range(const Info& info, double value) {
                                                    std::to_string(value));
 }
 
+// The member behind a double key (already looked up).
+double& double_field(Params& p, int key) {
+    switch (key) {
+        case BODT_PARAM_TOLERANCE: return p.tolerance;
+        case BODT_PARAM_MIN_STRETCH: return p.min_stretch;
+        case BODT_PARAM_FEATURE_ANGLE: return p.feature_angle;
+        case BODT_PARAM_EDGE_RATIO: return p.edge_ratio;
+        default: return p.corner_ratio;
+    }
+}
+
 }  // namespace
 
 void set_param_int(Params& p, int key, int32_t value) {
@@ -57,10 +71,7 @@ void set_param_int(Params& p, int key, int32_t value) {
 
 void set_param_double(Params& p, int key, double value) {
     check_range(lookup(key, Type::Double), value);
-    switch (key) {
-        case BODT_PARAM_TOLERANCE: p.tolerance = value; break;
-        case BODT_PARAM_MIN_STRETCH: p.min_stretch = value; break;
-    }
+    double_field(p, key) = value;
 }
 
 int32_t get_param_int(const Params& p, int key) {
@@ -70,7 +81,7 @@ int32_t get_param_int(const Params& p, int key) {
 
 double get_param_double(const Params& p, int key) {
     lookup(key, Type::Double);
-    return key == BODT_PARAM_TOLERANCE ? p.tolerance : p.min_stretch;
+    return double_field(const_cast<Params&>(p), key);
 }
 
 }  // namespace bodt

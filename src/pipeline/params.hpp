@@ -10,6 +10,9 @@ struct Params {
     int32_t backtrack_steps = 4;   // BODT_PARAM_BACKTRACK_STEPS
     double min_stretch = 1e-3;     // BODT_PARAM_MIN_STRETCH
     int32_t never_worse = 1;       // BODT_PARAM_NEVER_WORSE
+    double feature_angle = 30.0;   // BODT_PARAM_FEATURE_ANGLE, degrees
+    double edge_ratio = 0.2;       // BODT_PARAM_EDGE_RATIO
+    double corner_ratio = 0.2;     // BODT_PARAM_CORNER_RATIO
 };
 
 // Each throws Error(BODT_ERR_INVALID_ARGUMENT) for an unknown key, a key of

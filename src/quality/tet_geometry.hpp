@@ -66,6 +66,31 @@ inline double stretch(const TetPoints& p) {
     return denom > 0.0 ? 2.0 * std::sqrt(6.0) * six_v / denom : 0.0;
 }
 
+// The cosines of a tet's smallest and largest dihedral angle, without acos:
+// the extremes the angle guard compares.  Meaningful for positively
+// oriented tets.
+struct CosineRange {
+    double of_min;  // cos of the smallest angle (the largest cosine)
+    double of_max;  // cos of the largest angle (the smallest cosine)
+};
+
+inline CosineRange dihedral_cosines(const TetPoints& p) {
+    std::array<Vec3, 4> n;
+    for (int i = 0; i < 4; ++i) {
+        const auto& f = kFaceVertex[i];
+        n[i] = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]);
+        const double len = n[i].norm();
+        if (len > 0.0) n[i] /= len;
+    }
+    CosineRange r{-1.0, 1.0};
+    for (int e = 0; e < 6; ++e) {
+        const double c = -n[kEdgeFaces[e][0]].dot(n[kEdgeFaces[e][1]]);
+        r.of_min = std::max(r.of_min, c);
+        r.of_max = std::min(r.of_max, c);
+    }
+    return r;
+}
+
 // The six interior dihedral angles in degrees, in kEdgeVertex order.  The
 // angle at an edge is pi minus the angle between the outward normals of the
 // two faces that meet there.  Meaningful for positively oriented tets only.

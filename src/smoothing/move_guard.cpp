@@ -4,31 +4,52 @@
 
 namespace bodt {
 
-bool MoveGuard::acceptable(const TetMesh& mesh, int32_t v, double star_min_before) const {
-    double star_min_after = 1.0;
+namespace {
+
+Vec3 face_normal(const TetMesh& mesh, const FaceKey& f) {
+    const Vec3& a = mesh.points[f.v[0]];
+    return (mesh.points[f.v[1]] - a).cross(mesh.points[f.v[2]] - a);
+}
+
+}  // namespace
+
+bool MoveGuard::acceptable(const TetMesh& mesh, int32_t v, const CosineRange& star_before,
+                           const std::vector<FaceKey>& surface_faces) const {
+    for (size_t k = 0; k < surface_faces.size(); ++k)
+        if (!(face_normal(mesh, surface_faces[k]).dot(normals_[k]) > 0.0)) return false;
     size_t k = 0;
     for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t, ++k) {
         const auto p = mesh.tet_points(*t);
         if (orient(p[0], p[1], p[2], p[3]).sign <= 0) return false;
-        const double s = stretch(p);
-        if (s < std::min(settings_.min_stretch, before_[k])) return false;
-        star_min_after = std::min(star_min_after, s);
+        if (stretch(p) < std::min(settings_.min_stretch, before_[k])) return false;
+        if (settings_.never_worse) {
+            const CosineRange c = dihedral_cosines(p);
+            if (c.of_min > star_before.of_min || c.of_max < star_before.of_max) return false;
+        }
     }
-    return !settings_.never_worse || star_min_after >= star_min_before;
+    return true;
 }
 
-MoveOutcome MoveGuard::move(TetMesh& mesh, int32_t v, const Vec3& target, double& distance) {
+MoveOutcome MoveGuard::move(TetMesh& mesh, int32_t v, const Vec3& target, const std::vector<FaceKey>& surface_faces,
+                            double& distance) {
+    normals_.clear();
+    for (const FaceKey& f : surface_faces) normals_.push_back(face_normal(mesh, f));
     before_.clear();
-    double star_min_before = 1.0;
+    CosineRange star_before{-1.0, 1.0};  // the star's smallest and largest angle
     for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t) {
-        before_.push_back(stretch(mesh.tet_points(*t)));
-        star_min_before = std::min(star_min_before, before_.back());
+        const auto p = mesh.tet_points(*t);
+        before_.push_back(stretch(p));
+        if (settings_.never_worse) {
+            const CosineRange c = dihedral_cosines(p);
+            star_before.of_min = std::max(star_before.of_min, c.of_min);
+            star_before.of_max = std::min(star_before.of_max, c.of_max);
+        }
     }
     const Vec3 start = mesh.points[v];
     Vec3 step = target - start;
     for (int attempt = 0; attempt <= settings_.backtrack_steps; ++attempt, step *= 0.5) {
         mesh.points[v] = start + step;
-        if (acceptable(mesh, v, star_min_before)) {
+        if (acceptable(mesh, v, star_before, surface_faces)) {
             distance = step.norm();
             return attempt == 0 ? MoveOutcome::Moved : MoveOutcome::Shortened;
         }

@@ -1,0 +1,41 @@
+// The surfaces the boundary-aware smoothing works on: for every region
+// (material id), the closed surface around its tets, as an OpenMesh
+// halfedge mesh with faces oriented out of the region.  In a one-region mesh
+// this is the domain boundary; in a multi-region mesh an interface face is
+// in the surfaces of both regions it separates, once for each side.
+#pragma once
+
+#include "mesh/boundary_surface.hpp"
+
+#include <vector>
+
+namespace bodt {
+
+class RegionSurfaces {
+public:
+    // A region's surface need not be a manifold (a region may touch itself
+    // along an edge or at a vertex): with Tolerant, the vertices where it is
+    // not have no closed one-ring and are reported as blocked; with Strict
+    // (the domain boundary of a new mesh) that is an Error.  `base` is the
+    // index base for messages.
+    void build(const TetMesh& mesh, int base, BoundarySurface::Strictness strictness);
+
+    // True when some surface has no closed ring around v: v cannot move.
+    bool blocked(int32_t v) const { return !blocked_.empty() && blocked_[v]; }
+
+    int32_t count() const { return static_cast<int32_t>(surfaces_.size()); }
+    const BoundarySurface& surface(int32_t k) const { return surfaces_[k]; }
+    int32_t region(int32_t k) const { return regions_[k]; }
+
+    // Indices of the surfaces vertex v lies on.
+    const int32_t* begin(int32_t v) const { return at_.data() + offset_[v]; }
+    const int32_t* end(int32_t v) const { return at_.data() + offset_[v + 1]; }
+
+private:
+    std::vector<BoundarySurface> surfaces_;
+    std::vector<int32_t> regions_;
+    std::vector<int32_t> offset_, at_;  // CSR: vertex -> surfaces
+    std::vector<char> blocked_;         // per vertex; empty when none is
+};
+
+}  // namespace bodt

@@ -1,0 +1,107 @@
+#include "smoothing/bodt_smoother.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+
+namespace bodt {
+
+namespace {
+
+int local_index(const Tet& t, int32_t v) {
+    return t[0] == v ? 0 : t[1] == v ? 1 : t[2] == v ? 2 : 3;
+}
+
+}  // namespace
+
+bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) {
+    // The directions that keep every region's volume: the complement of the
+    // span of the ring normals (one normal for a boundary or interface
+    // vertex, two independent ones where an interface meets the boundary).
+    Eigen::Matrix3d span = Eigen::Matrix3d::Zero();
+    for (const Vec3& n : normals_) {
+        const double len = n.norm();
+        if (!(len > 0.0)) return false;
+        span += n * n.transpose() / (len * len);
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(span);
+    const Vec3 lambda = solver.eigenvalues();  // ascending
+    const double floor = 1e-12 * lambda[2];
+    const int free_dims = (lambda[0] <= floor) + (lambda[1] <= floor);
+    if (free_dims == 0) return false;
+    // The tangent-plane normal: a lone ring normal as it is (eq. B.1).
+    const auto plane_normal = [this](const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>& s) -> Vec3 {
+        return normals_.size() == 1 ? Vec3(normals_[0].normalized()) : Vec3(s.eigenvectors().col(2));
+    };
+
+    if (classes_.cls[v] == VertexClass::FeatureLine || free_dims == 1) {
+        Vec3 d;
+        if (free_dims == 1) {
+            d = solver.eigenvectors().col(0);  // the only free direction
+        } else {
+            const auto& line = classes_.line[v];
+            if (line[0] >= 0) {
+                d = mesh.points[line[0]] - mesh.points[line[1]];  // chord of the feature line
+            } else {
+                Vec3 mu;
+                Eigen::Matrix3d e;
+                tensor_voting(mesh, surfaces_, v, faces_, ring_, mu, e);
+                d = e.col(2);  // e2 of eq. (11)
+            }
+            const Vec3 n = plane_normal(solver);
+            d -= d.dot(n) * n;  // keep the volume: stay in the tangent plane
+        }
+        const double len = d.norm();
+        if (!(len > 1e-12)) return false;
+        basis.resize(3, 1);
+        basis.col(0) = d / len;
+        return true;
+    }
+    Vec3 s, t;
+    tangent_basis(plane_normal(solver), s, t);
+    basis.resize(3, 2);
+    basis.col(0) = s;
+    basis.col(1) = t;
+    return true;
+}
+
+Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, Vec3& target, std::vector<FaceKey>& surface_faces) {
+    surface_faces.clear();
+    const VertexClass c = classes_.cls[v];
+    if (c != VertexClass::Interior && c != VertexClass::Surface && c != VertexClass::FeatureLine) return Plan::Stay;
+
+    const Vec3& x0 = mesh.points[v];
+    StarModel model;
+    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
+        add_star_tet(model, mesh.tet_points(*t), local_index(mesh.tets[*t], v));
+    if (c == VertexClass::Interior) {
+        // Algorithm 1, eq. (3): x* = x0 - 1/(2|Omega_0|) sum (1/3) S n L = x0 - 2 g / |Omega_0|.
+        if (!(model.volume > 0.0)) return Plan::NotPositiveDefinite;
+        target = x0 - (2.0 / model.volume) * model.g;
+        return Plan::Move;
+    }
+
+    normals_.clear();
+    for (const int32_t* k = surfaces_.begin(v); k != surfaces_.end(v); ++k) {
+        surfaces_.surface(*k).one_ring(v, ring_);
+        Vec3 n = Vec3::Zero();
+        const size_t m = ring_.size();
+        for (size_t i = 0; i < m; ++i) {
+            const int32_t a = ring_[i], b = ring_[(i + 1) % m];
+            n += add_ring_triangle(model, x0, mesh.points[a], mesh.points[b]);
+            surface_faces.push_back(FaceKey::of(v, a, b));
+        }
+        normals_.push_back(n);
+    }
+    std::sort(surface_faces.begin(), surface_faces.end());
+    surface_faces.erase(std::unique(surface_faces.begin(), surface_faces.end()), surface_faces.end());
+
+    MoveBasis basis;
+    if (!move_basis(mesh, v, basis)) return Plan::Stay;
+    Vec3 move;
+    if (!minimize_on(model, basis, move)) return Plan::NotPositiveDefinite;
+    target = x0 + move;
+    return Plan::Move;
+}
+
+}  // namespace bodt

@@ -1,0 +1,39 @@
+// Where paper 000's smoothing wants a vertex: Algorithm 1 (ODT, eq. 3) for
+// inner vertices, Algorithm 2 (tangent plane, eq. 10) for surface vertices,
+// Algorithm 3 (feature line, f = -B/2A) for feature-line vertices; corners
+// and fixed vertices stay.
+#pragma once
+
+#include "features/vertex_classes.hpp"
+#include "mesh/region_surfaces.hpp"
+#include "smoothing/bodt_model.hpp"
+
+#include <vector>
+
+namespace bodt {
+
+enum class Plan { Move, Stay, NotPositiveDefinite };
+
+class BodtSmoother {
+public:
+    BodtSmoother(const RegionSurfaces& surfaces, const VertexClasses& classes)
+        : surfaces_(surfaces), classes_(classes) {}
+
+    // The target of vertex v.  `surface_faces` receives the surface triangles
+    // around v (for the guard's normal-flip check); empty for inner vertices.
+    Plan target(const TetMesh& mesh, int32_t v, Vec3& target, std::vector<FaceKey>& surface_faces);
+
+private:
+    // The directions v may move in without changing any region's volume or
+    // leaving its feature line: orthogonal to every ring normal, and along
+    // the feature line for a FeatureLine vertex.
+    bool move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis);
+
+    const RegionSurfaces& surfaces_;
+    const VertexClasses& classes_;
+    std::vector<int32_t> ring_;
+    std::vector<Vec3> normals_;  // one ring normal sum_i S_i n_i per surface at v (eq. B.1)
+    std::vector<FaceKey> faces_;
+};
+
+}  // namespace bodt
