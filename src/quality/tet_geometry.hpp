@@ -52,20 +52,6 @@ inline double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const V
 
 using TetPoints = std::array<Vec3, 4>;
 
-// Stretch (papers 001 and 002, eq. 3.1): 6 sqrt(6) V / (sum of face areas *
-// longest edge).  1 for the regular tet, 0 when flat, negative when inverted.
-inline double stretch(const TetPoints& p) {
-    const double six_v = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
-    double area2 = 0.0;  // twice the total face area
-    for (const auto& f : kFaceVertex)
-        area2 += (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
-    double lmax2 = 0.0;
-    for (const auto& e : kEdgeVertex) lmax2 = std::max(lmax2, (p[e[1]] - p[e[0]]).squaredNorm());
-    const double denom = area2 * std::sqrt(lmax2);
-    // 6 sqrt(6) V / (A l) with V = six_v / 6 and A = area2 / 2.
-    return denom > 0.0 ? 2.0 * std::sqrt(6.0) * six_v / denom : 0.0;
-}
-
 // The cosines of a tet's smallest and largest dihedral angle, without acos:
 // the extremes the angle guard compares.  Meaningful for positively
 // oriented tets.
@@ -74,22 +60,40 @@ struct CosineRange {
     double of_max;  // cos of the largest angle (the smallest cosine)
 };
 
-inline CosineRange dihedral_cosines(const TetPoints& p) {
+// What the move guard needs of a tet, from one set of face normals.
+struct TetShape {
+    double stretch;
+    CosineRange cosines;
+};
+
+inline TetShape tet_shape(const TetPoints& p) {
     std::array<Vec3, 4> n;
+    double area2 = 0.0;  // twice the total face area
     for (int i = 0; i < 4; ++i) {
         const auto& f = kFaceVertex[i];
         n[i] = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]);
         const double len = n[i].norm();
+        area2 += len;
         if (len > 0.0) n[i] /= len;
     }
-    CosineRange r{-1.0, 1.0};
+    TetShape s{0.0, {-1.0, 1.0}};
+    double lmax2 = 0.0;
     for (int e = 0; e < 6; ++e) {
+        lmax2 = std::max(lmax2, (p[kEdgeVertex[e][1]] - p[kEdgeVertex[e][0]]).squaredNorm());
         const double c = -n[kEdgeFaces[e][0]].dot(n[kEdgeFaces[e][1]]);
-        r.of_min = std::max(r.of_min, c);
-        r.of_max = std::min(r.of_max, c);
+        s.cosines.of_min = std::max(s.cosines.of_min, c);
+        s.cosines.of_max = std::min(s.cosines.of_max, c);
     }
-    return r;
+    // Stretch (papers 001 and 002, eq. 3.1): 6 sqrt(6) V / (sum of face
+    // areas * longest edge) with V = six_v / 6 and the areas area2 / 2.
+    const double six_v = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
+    const double denom = area2 * std::sqrt(lmax2);
+    s.stretch = denom > 0.0 ? 2.0 * std::sqrt(6.0) * six_v / denom : 0.0;
+    return s;
 }
+
+// Stretch: 1 for the regular tet, 0 when flat, negative when inverted.
+inline double stretch(const TetPoints& p) { return tet_shape(p).stretch; }
 
 // The six interior dihedral angles in degrees, in kEdgeVertex order.  The
 // angle at an edge is pi minus the angle between the outward normals of the

@@ -21,11 +21,11 @@ bool MoveGuard::acceptable(const TetMesh& mesh, int32_t v, const CosineRange& st
     for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t, ++k) {
         const auto p = mesh.tet_points(*t);
         if (orient(p[0], p[1], p[2], p[3]).sign <= 0) return false;
-        if (stretch(p) < std::min(settings_.min_stretch, before_[k])) return false;
-        if (settings_.never_worse) {
-            const CosineRange c = dihedral_cosines(p);
-            if (c.of_min > star_before.of_min || c.of_max < star_before.of_max) return false;
-        }
+        const TetShape shape = tet_shape(p);
+        if (shape.stretch < std::min(settings_.min_stretch, before_[k])) return false;
+        if (settings_.never_worse &&
+            (shape.cosines.of_min > star_before.of_min || shape.cosines.of_max < star_before.of_max))
+            return false;
     }
     return true;
 }
@@ -37,13 +37,10 @@ MoveOutcome MoveGuard::move(TetMesh& mesh, int32_t v, const Vec3& target, const 
     before_.clear();
     CosineRange star_before{-1.0, 1.0};  // the star's smallest and largest angle
     for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t) {
-        const auto p = mesh.tet_points(*t);
-        before_.push_back(stretch(p));
-        if (settings_.never_worse) {
-            const CosineRange c = dihedral_cosines(p);
-            star_before.of_min = std::max(star_before.of_min, c.of_min);
-            star_before.of_max = std::min(star_before.of_max, c.of_max);
-        }
+        const TetShape shape = tet_shape(mesh.tet_points(*t));
+        before_.push_back(shape.stretch);
+        star_before.of_min = std::max(star_before.of_min, shape.cosines.of_min);
+        star_before.of_max = std::min(star_before.of_max, shape.cosines.of_max);
     }
     const Vec3 start = mesh.points[v];
     Vec3 step = target - start;
