@@ -3,12 +3,9 @@
 #include <vector>
 
 #ifdef BODT_WITH_TETGEN
+#include "cli/silenced_stdout.hpp"
+
 #include <tetgen.h>
-
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cstdio>
 #endif
 
 namespace bodt_cli {
@@ -30,31 +27,6 @@ bool is_surface_path(const std::string& path) {
 #ifdef BODT_WITH_TETGEN
 
 namespace {
-
-// TetGen's file loaders print "Opening FILE." on stdout, which is ours:
-// send it to /dev/null while they run.
-class SilencedStdout {
-public:
-    SilencedStdout() {
-        std::fflush(stdout);
-        saved_ = dup(STDOUT_FILENO);
-        const int null = open("/dev/null", O_WRONLY);
-        if (null >= 0) {
-            dup2(null, STDOUT_FILENO);
-            close(null);
-        }
-    }
-    ~SilencedStdout() {
-        std::fflush(stdout);
-        if (saved_ >= 0) {
-            dup2(saved_, STDOUT_FILENO);
-            close(saved_);
-        }
-    }
-
-private:
-    int saved_;
-};
 
 bool load_surface(tetgenio& in, const std::string& ext, char* name) {
     const SilencedStdout quiet;

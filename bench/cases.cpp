@@ -1,0 +1,484 @@
+// cases.cpp -- see cases.hpp.
+#include "cases.hpp"
+
+#include "surface_distance.hpp"
+
+#include <dirent.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+
+#ifdef BODT_BENCH_WITH_ZLIB
+#include <zlib.h>
+#endif
+
+#ifdef BODT_BENCH_WITH_TETGEN
+#include "cli/silenced_stdout.hpp"
+
+#include <tetgen.h>
+#endif
+
+namespace bench {
+
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+bool is_dir(const std::string& p) {
+    struct stat st;
+    return stat(p.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+bool is_file(const std::string& p) {
+    struct stat st;
+    return stat(p.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+std::vector<std::string> list_dir(const std::string& dir) {
+    std::vector<std::string> out;
+    if (DIR* d = opendir(dir.c_str())) {
+        while (const dirent* e = readdir(d)) {
+            const std::string n = e->d_name;
+            if (n != "." && n != "..") out.push_back(n);
+        }
+        closedir(d);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+std::string basename_of(const std::string& p) {
+    const size_t s = p.rfind('/');
+    return s == std::string::npos ? p : p.substr(s + 1);
+}
+
+// Case names are used in file names (--write-dir): keep them plain.
+std::string safe_name(std::string s) {
+    for (char& c : s)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.')) c = '_';
+    return s;
+}
+
+// splitmix64: a small generator whose output is the same everywhere (the
+// <random> distributions are not), so the generated meshes are reproducible.
+class Rng {
+public:
+    explicit Rng(uint64_t seed) : s_(seed) {}
+    uint64_t next() {
+        uint64_t z = (s_ += 0x9e3779b97f4a7c15ULL);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        return z ^ (z >> 31);
+    }
+    double uniform() { return double(next() >> 11) * 0x1.0p-53; }  // [0, 1)
+    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+
+private:
+    uint64_t s_;
+};
+
+double signed_volume6(const double* a, const double* b, const double* c, const double* d) {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+           u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+
+// ------------------------------------------------------------ jittered box
+
+// n^3 cubes of the unit cube, each cut into the 6 Kuhn tets around its main
+// diagonal; every interior vertex is moved by a uniform random offset of up to
+// amplitude * h per coordinate (h = 1/n).  Offsets that would leave a tet
+// nearly flat (volume below 2% of the undisturbed Kuhn tet) are halved for
+// that tet's vertices until none is, so the mesh is valid.
+bool make_jittered_box(int n, double amplitude, uint64_t seed, MeshArrays& m, std::string& note) {
+    const int n1 = n + 1;
+    const double h = 1.0 / n;
+    auto vid = [n1](int i, int j, int k) { return int32_t(i + n1 * (j + n1 * k)); };
+    m.xyz.assign(3 * size_t(n1) * n1 * n1, 0.0);
+    for (int k = 0; k <= n; ++k)
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                double* p = &m.xyz[3 * size_t(vid(i, j, k))];
+                p[0] = i * h;
+                p[1] = j * h;
+                p[2] = k * h;
+            }
+    static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    m.tets.clear();
+    m.tets.reserve(24 * size_t(n) * n * n);
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                for (const auto& p : perms) {
+                    int c[3] = {i, j, k};
+                    int32_t t[4];
+                    t[0] = vid(c[0], c[1], c[2]);
+                    for (int s = 0; s < 3; ++s) {
+                        ++c[p[s]];
+                        t[s + 1] = vid(c[0], c[1], c[2]);
+                    }
+                    const double* x = m.xyz.data();
+                    if (signed_volume6(x + 3 * t[0], x + 3 * t[1], x + 3 * t[2], x + 3 * t[3]) < 0)
+                        std::swap(t[2], t[3]);
+                    m.tets.insert(m.tets.end(), t, t + 4);
+                }
+    const std::vector<double> base = m.xyz;
+    std::vector<double> offset(m.xyz.size(), 0.0);
+    Rng rng(seed);
+    for (int k = 1; k < n; ++k)
+        for (int j = 1; j < n; ++j)
+            for (int i = 1; i < n; ++i)
+                for (int c = 0; c < 3; ++c)
+                    offset[3 * size_t(vid(i, j, k)) + size_t(c)] = rng.uniform(-amplitude, amplitude) * h;
+    const double min_vol6 = 0.02 * h * h * h;  // the Kuhn tet has 6 V = h^3
+    int rounds = 0, halved = 0;
+    for (;; ++rounds) {
+        for (size_t i = 0; i < m.xyz.size(); ++i) m.xyz[i] = base[i] + offset[i];
+        std::vector<char> shrink(m.xyz.size() / 3, 0);
+        bool any = false;
+        const double* x = m.xyz.data();
+        for (size_t t = 0; t < m.tets.size(); t += 4) {
+            const int32_t* q = &m.tets[t];
+            if (signed_volume6(x + 3 * q[0], x + 3 * q[1], x + 3 * q[2], x + 3 * q[3]) < min_vol6) {
+                for (int s = 0; s < 4; ++s) shrink[size_t(q[s])] = 1;
+                any = true;
+            }
+        }
+        if (!any) break;
+        if (rounds == 60) {
+            note = "jittered box: could not make all tets valid";
+            return false;
+        }
+        for (size_t v = 0; v < shrink.size(); ++v)
+            if (shrink[v]) {
+                ++halved;
+                for (int c = 0; c < 3; ++c) offset[3 * v + size_t(c)] *= 0.5;
+            }
+    }
+    m.index_base = 0;
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "Kuhn box %d^3 cubes x 6 tets, interior vertices jittered by up to %.2f h (seed %llu); "
+                  "%d offset halvings in %d rounds to keep every tet valid",
+                  n, amplitude, static_cast<unsigned long long>(seed), halved, rounds);
+    note = buf;
+    return true;
+}
+
+#ifdef BODT_BENCH_WITH_TETGEN
+
+using bodt_cli::SilencedStdout;  // TetGen prints to stdout, which carries the JSON
+
+bool run_tetgen(const char* switches_in, tetgenio& in, tetgenio& out, std::string& err) {
+    std::string sw = switches_in;
+    std::vector<char> switches(sw.begin(), sw.end());
+    switches.push_back('\0');
+    tetgenbehavior behavior;
+    const SilencedStdout quiet;
+    if (!behavior.parse_commandline(switches.data())) {
+        err = std::string("TetGen rejected the switches ") + switches_in;
+        return false;
+    }
+    try {
+        tetrahedralize(&behavior, &in, &out);
+    } catch (...) {  // TetGen reports failures by throwing an int
+        err = std::string("TetGen failed (switches ") + switches_in + ")";
+        return false;
+    }
+    if (out.numberoftetrahedra <= 0) {
+        err = std::string("TetGen made no tets (switches ") + switches_in + ")";
+        return false;
+    }
+    return true;
+}
+
+void copy_tetgen_output(const tetgenio& out, MeshArrays& m, bool with_faces) {
+    m.xyz.assign(out.pointlist, out.pointlist + 3 * size_t(out.numberofpoints));
+    m.tets.resize(4 * size_t(out.numberoftetrahedra));
+    for (size_t t = 0; t < size_t(out.numberoftetrahedra); ++t)
+        for (size_t c = 0; c < 4; ++c)
+            m.tets[4 * t + c] = out.tetrahedronlist[size_t(out.numberofcorners) * t + c];
+    m.index_base = out.firstnumber;
+    m.faces.clear();
+    m.markers.clear();
+    if (with_faces && out.numberoftrifaces > 0 && out.trifacelist && out.trifacemarkerlist) {
+        m.faces.assign(out.trifacelist, out.trifacelist + 3 * size_t(out.numberoftrifaces));
+        m.markers.assign(out.trifacemarkerlist, out.trifacemarkerlist + size_t(out.numberoftrifaces));
+    }
+}
+
+// Like `tetgen -pQ FILE` / `tetgen -pqQ FILE`.
+bool tetgen_surface(const std::string& path, const char* switches, PreparedMesh& pm, std::string& err) {
+    std::vector<char> name(path.begin(), path.end());
+    name.push_back('\0');
+    tetgenio in, out;
+    bool ok;
+    {
+        const SilencedStdout quiet;
+        ok = ends_with(path, ".stl") ? in.load_stl(name.data()) : in.load_off(name.data());
+    }
+    if (!ok) {
+        err = "TetGen could not read " + path;
+        return false;
+    }
+    if (!run_tetgen(switches, in, out, err)) return false;
+    copy_tetgen_output(out, pm.arrays, true);
+    pm.note = "tetgen -" + std::string(switches) + ": " + std::to_string(out.numberofpoints) + " vertices, " +
+              std::to_string(out.numberoftetrahedra) + " tets";
+    return true;
+}
+
+// 642 uniformly random points on the unit sphere (fixed seed).  With
+// refine_bound <= 0: the Delaunay tetrahedralization of the points (`tetgen
+// -Q` on the point set): every vertex is on the boundary.  Otherwise the
+// convex hull of that tetrahedralization is meshed again as a PLC with
+// `-pq<bound>YQ`: the boundary keeps exactly the 642 points (Y) and TetGen's
+// quality refinement inserts interior Steiner points, like the 87 interior
+// points of paper 000's Random Sphere.
+bool random_sphere(double refine_bound, PreparedMesh& pm, std::string& err) {
+    const int npts = 642;
+    Rng rng(20240000642ULL);
+    tetgenio in, out;
+    in.firstnumber = 0;
+    in.numberofpoints = npts;
+    in.pointlist = new REAL[3 * size_t(npts)];
+    for (int i = 0; i < npts; ++i) {
+        const double z = rng.uniform(-1.0, 1.0), phi = rng.uniform(0.0, 2.0 * M_PI);
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        in.pointlist[3 * i] = r * std::cos(phi);
+        in.pointlist[3 * i + 1] = r * std::sin(phi);
+        in.pointlist[3 * i + 2] = z;
+    }
+    if (!run_tetgen("Q", in, out, err)) return false;
+    if (refine_bound <= 0) {
+        copy_tetgen_output(out, pm.arrays, false);
+        pm.note = "Delaunay of 642 random points on the unit sphere (tetgen -Q): " +
+                  std::to_string(out.numberofpoints) + " vertices, " + std::to_string(out.numberoftetrahedra) +
+                  " tets, no interior vertex";
+        return true;
+    }
+    std::vector<int32_t> tets(out.tetrahedronlist, out.tetrahedronlist + 4 * size_t(out.numberoftetrahedra));
+    const auto hull = boundary_triangles(tets, out.firstnumber);
+    tetgenio plc, out2;
+    plc.firstnumber = 0;
+    plc.numberofpoints = out.numberofpoints;
+    plc.pointlist = new REAL[3 * size_t(out.numberofpoints)];
+    std::copy(out.pointlist, out.pointlist + 3 * size_t(out.numberofpoints), plc.pointlist);
+    plc.numberoffacets = int(hull.size());
+    plc.facetlist = new tetgenio::facet[hull.size()];
+    for (size_t f = 0; f < hull.size(); ++f) {
+        tetgenio::facet& fa = plc.facetlist[f];
+        tetgenio::init(&fa);
+        fa.numberofpolygons = 1;
+        fa.polygonlist = new tetgenio::polygon[1];
+        tetgenio::init(&fa.polygonlist[0]);
+        fa.polygonlist[0].numberofvertices = 3;
+        fa.polygonlist[0].vertexlist = new int[3];
+        for (int c = 0; c < 3; ++c) fa.polygonlist[0].vertexlist[c] = hull[f][size_t(c)];
+    }
+    char sw[64];
+    std::snprintf(sw, sizeof sw, "pq%gYQ", refine_bound);
+    if (!run_tetgen(sw, plc, out2, err)) return false;
+    copy_tetgen_output(out2, pm.arrays, false);
+    pm.note = "642 random points on the unit sphere, convex hull re-meshed with tetgen -" + std::string(sw) + ": " +
+              std::to_string(out2.numberofpoints) + " vertices (" + std::to_string(out2.numberofpoints - npts) +
+              " interior Steiner points), " + std::to_string(out2.numberoftetrahedra) + " tets";
+    return true;
+}
+
+#endif  // BODT_BENCH_WITH_TETGEN
+
+// A tet mesh file for bodt_mesh_read; .gz files (and the .node/.ele/.face
+// siblings of a gzipped TetGen file) are decompressed into temp_dir first.
+bool prepare_file(const std::string& path, const std::string& temp_dir, PreparedMesh& pm, std::string& err) {
+    pm.from_file = true;
+    if (!ends_with(path, ".gz")) {
+        pm.path = path;
+        return true;
+    }
+    const std::string plain = path.substr(0, path.size() - 3);
+    const std::string dest = temp_dir + "/" + basename_of(plain);
+    if (ends_with(plain, ".ele") || ends_with(plain, ".node")) {
+        const std::string stem = plain.substr(0, plain.rfind('.'));
+        const std::string dstem = dest.substr(0, dest.rfind('.'));
+        for (const char* ext : {".node", ".ele", ".face"}) {
+            const std::string src = stem + ext + ".gz";
+            if (is_file(src)) {
+                if (!gunzip_file(src, dstem + ext, err)) return false;
+            } else if (is_file(stem + ext)) {
+                if (!gunzip_file(stem + ext, dstem + ext, err)) return false;  // not gzipped: copy
+            }
+        }
+        pm.path = dstem + ".ele";
+        return true;
+    }
+    if (!gunzip_file(path, dest, err)) return false;
+    pm.path = dest;
+    return true;
+}
+
+}  // namespace
+
+bool gunzip_file(const std::string& src, const std::string& dest, std::string& err) {
+#ifdef BODT_BENCH_WITH_ZLIB
+    gzFile in = gzopen(src.c_str(), "rb");  // also reads plain files
+    if (!in) {
+        err = "cannot open " + src;
+        return false;
+    }
+    FILE* out = std::fopen(dest.c_str(), "wb");
+    if (!out) {
+        gzclose(in);
+        err = "cannot write " + dest;
+        return false;
+    }
+    std::vector<char> buf(1 << 16);
+    int n;
+    bool ok = true;
+    while ((n = gzread(in, buf.data(), unsigned(buf.size()))) > 0)
+        if (std::fwrite(buf.data(), 1, size_t(n), out) != size_t(n)) ok = false;
+    if (n < 0) ok = false;
+    gzclose(in);
+    if (std::fclose(out) != 0) ok = false;
+    if (!ok) err = "cannot decompress " + src + " to " + dest;
+    return ok;
+#else
+    auto quote = [](const std::string& s) {
+        std::string q = "'";
+        for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+        return q + "'";
+    };
+    const std::string cmd = "gzip -dc " + quote(src) + " > " + quote(dest);
+    if (std::system(cmd.c_str()) != 0) {
+        err = "gzip -dc failed on " + src;
+        return false;
+    }
+    return true;
+#endif
+}
+
+std::vector<Case> make_cases(const CaseOptions& opt, std::vector<std::string>& notes) {
+    std::vector<Case> cases;
+    const std::string temp_dir = opt.temp_dir;
+
+    // (a) TetGen meshes of surfaces, like `tetgen -pQ` and `tetgen -pqQ`.
+    std::vector<std::string> surfaces;
+    if (!opt.shared_dir.empty()) {
+        const std::string dir = opt.shared_dir + "/meshes/surface";
+        for (const char* s : {"cgal_fandisk.off", "cgal_eight.off", "cgal_joint.off", "cgal_rotor.off",
+                              "netgen_hinge.stl"}) {
+            if (is_file(dir + "/" + s))
+                surfaces.push_back(dir + "/" + s);
+            else
+                notes.push_back(std::string("surface ") + s + " not found in " + dir);
+        }
+    }
+    for (const auto& s : opt.extra_surfaces) surfaces.push_back(s);
+    for (const auto& path : surfaces) {
+        std::string stem = basename_of(path);
+        stem = stem.substr(0, stem.rfind('.'));
+        for (const char* sw : {"pQ", "pqQ"}) {
+            Case c;
+            c.name = safe_name(stem + "." + sw);
+            c.kind = "tetgen-surface";
+            c.source = path;
+#ifdef BODT_BENCH_WITH_TETGEN
+            const std::string switches = sw;
+            c.prepare = [path, switches](PreparedMesh& pm, std::string& err) {
+                return tetgen_surface(path, switches.c_str(), pm, err);
+            };
+            cases.push_back(c);
+#else
+            notes.push_back("skipped " + c.name + ": bodt_bench was built without TetGen");
+#endif
+        }
+    }
+
+    // (b) tet mesh files that bodt_mesh_read reads.
+    std::vector<std::string> files;
+    if (!opt.shared_dir.empty()) {
+        for (const std::string& dir : {opt.shared_dir + "/meshes/tet", opt.shared_dir + "/meshes/tet/tetgen_generated"}) {
+            if (!is_dir(dir)) {
+                notes.push_back("no directory " + dir);
+                continue;
+            }
+            for (const auto& f : list_dir(dir)) {
+                const std::string p = dir + "/" + f;
+                if (!is_file(p)) continue;
+                if (ends_with(f, ".mesh") || ends_with(f, ".mesh.gz") || ends_with(f, ".ele") ||
+                    ends_with(f, ".ele.gz"))
+                    files.push_back(p);
+                else if (ends_with(f, ".vtk") || ends_with(f, ".vtk.gz") || ends_with(f, ".vtu"))
+                    notes.push_back("skipped " + f + ": VTK is not a format of bodt_mesh_read (.mesh, .node/.ele)");
+            }
+        }
+    }
+    for (const auto& f : opt.extra_meshes) files.push_back(f);
+    for (const auto& path : files) {
+        std::string stem = basename_of(path);
+        if (ends_with(stem, ".gz")) stem = stem.substr(0, stem.size() - 3);
+        stem = stem.substr(0, stem.rfind('.'));
+        Case c;
+        c.name = safe_name("file." + stem);
+        c.kind = "file";
+        c.source = path;
+        c.prepare = [path, temp_dir](PreparedMesh& pm, std::string& err) {
+            return prepare_file(path, temp_dir, pm, err);
+        };
+        cases.push_back(c);
+    }
+
+    // (c) the random sphere of paper 000.
+#ifdef BODT_BENCH_WITH_TETGEN
+    {
+        Case c;
+        c.name = "sphere642.Q";
+        c.kind = "random-sphere";
+        c.source = "642 random points on the unit sphere, Delaunay (tetgen -Q)";
+        c.prepare = [](PreparedMesh& pm, std::string& err) { return random_sphere(0.0, pm, err); };
+        cases.push_back(c);
+        // The bound 7 gives 85 interior Steiner points (the paper's mesh: 87).
+        Case r;
+        r.name = "sphere642.pq7Y";
+        r.kind = "random-sphere";
+        r.source = "642 random points on the unit sphere, hull re-meshed with tetgen -pq7YQ";
+        r.prepare = [](PreparedMesh& pm, std::string& err) { return random_sphere(7.0, pm, err); };
+        cases.push_back(r);
+    }
+#else
+    notes.push_back("skipped the random sphere: bodt_bench was built without TetGen");
+#endif
+
+    // (d) jittered Kuhn boxes.
+    std::vector<int> boxes = {12};  // 10368 tets
+    if (opt.large) boxes.push_back(26);  // 105456 tets
+    for (int n : boxes) {
+        Case c;
+        c.name = "box" + std::to_string(n) + ".jitter";
+        c.kind = "box";
+        c.source = "unit cube, " + std::to_string(n) + "^3 Kuhn cubes (" + std::to_string(6 * n * n * n) +
+                   " tets), interior vertices jittered";
+        c.prepare = [n](PreparedMesh& pm, std::string& err) {
+            pm.from_file = false;
+            return make_jittered_box(n, 0.35, 0xb0d7b0c5ULL + uint64_t(n), pm.arrays, pm.note) ||
+                   (err = pm.note, false);
+        };
+        cases.push_back(c);
+    }
+    return cases;
+}
+
+}  // namespace bench
