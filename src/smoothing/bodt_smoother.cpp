@@ -14,6 +14,30 @@ int local_index(const Tet& t, int32_t v) {
 
 }  // namespace
 
+// The feature line's direction at v: orthogonal to the surface on both of
+// its sides, n_a x n_b with n_a, n_b the summed area vectors of the ring
+// triangles between the line's two neighbours on either side, so a vertex
+// on a curved rim leaves neither face.  Where the two sides are coplanar (a
+// line drawn on a flat face) it is the chord between the two neighbours.
+Vec3 BodtSmoother::line_direction(const TetMesh& mesh, int32_t v, const std::array<int32_t, 2>& line) {
+    const Vec3& x0 = mesh.points[v];
+    const Vec3 chord = mesh.points[line[0]] - mesh.points[line[1]];
+    surfaces_.surface(*surfaces_.begin(v)).one_ring(v, ring_);
+    const auto a = std::find(ring_.begin(), ring_.end(), line[0]);
+    const auto b = std::find(ring_.begin(), ring_.end(), line[1]);
+    if (a == ring_.end() || b == ring_.end()) return chord;
+    const size_t m = ring_.size(), ia = static_cast<size_t>(a - ring_.begin());
+    const size_t ib = static_cast<size_t>(b - ring_.begin());
+    Vec3 side[2] = {Vec3::Zero(), Vec3::Zero()};
+    for (size_t i = 0; i < m; ++i) {
+        // Triangle (x0, y_i, y_{i+1}) lies on side 0 when i is in [ia, ib) cyclically.
+        const bool first = ia < ib ? (i >= ia && i < ib) : (i >= ia || i < ib);
+        side[first ? 0 : 1] += (mesh.points[ring_[i]] - x0).cross(mesh.points[ring_[(i + 1) % m]] - x0);
+    }
+    const Vec3 d = side[0].cross(side[1]);
+    return d.norm() > 1e-6 * side[0].norm() * side[1].norm() ? d : chord;
+}
+
 bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) {
     // The directions that keep every region's volume: the complement of the
     // span of the ring normals (one normal for a boundary or interface
@@ -41,7 +65,7 @@ bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) 
         } else {
             const auto& line = classes_.line[v];
             if (line[0] >= 0) {
-                d = mesh.points[line[0]] - mesh.points[line[1]];  // chord of the feature line
+                d = line_direction(mesh, v, line);
             } else {
                 Vec3 mu;
                 Eigen::Matrix3d e;
@@ -49,7 +73,7 @@ bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) 
                 d = e.col(2);  // e2 of eq. (11)
             }
             const Vec3 n = plane_normal(solver);
-            d -= d.dot(n) * n;  // keep the volume: stay in the tangent plane
+            d -= d.dot(n) * n;  // keep the volume: stay in the tangent plane (a no-op for n_a x n_b)
         }
         const double len = d.norm();
         if (!(len > 1e-12)) return false;

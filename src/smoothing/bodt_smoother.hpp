@@ -28,6 +28,7 @@ private:
     // leaving its feature line: orthogonal to every ring normal, and along
     // the feature line for a FeatureLine vertex.
     bool move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis);
+    Vec3 line_direction(const TetMesh& mesh, int32_t v, const std::array<int32_t, 2>& line);
 
     const RegionSurfaces& surfaces_;
     const VertexClasses& classes_;

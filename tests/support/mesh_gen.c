@@ -1,5 +1,6 @@
 #include "mesh_gen.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -142,4 +143,124 @@ int32_t tm_count_interior(const test_mesh *m) {
     int32_t n = 0;
     for (int32_t v = 0; v < m->nverts; ++v) n += !m->boundary[v];
     return n;
+}
+
+/* ------------------------------------------------ sliding boundary jitter */
+
+typedef struct sliding_labels {
+    int n;
+    tm_cube_filter keep;
+    tm_cube_region region;
+    void *user;
+} sliding_labels;
+
+/* -1 for a cube outside the grid or not kept, else its region id. */
+static int cube_label(const sliding_labels *L, int i, int j, int k) {
+    if (i < 0 || j < 0 || k < 0 || i >= L->n || j >= L->n || k >= L->n) return -1;
+    if (L->keep && !L->keep(i, j, k, L->n, L->user)) return -1;
+    return L->region ? L->region(i, j, k, L->n, L->user) : 0;
+}
+
+/* Bit a set when the eight cubes around grid vertex (gi, gj, gk) look the
+ * same after flipping axis a. */
+static unsigned char free_axes_at(const sliding_labels *L, int gi, int gj, int gk) {
+    int label[8];
+    for (int c = 0; c < 8; ++c) label[c] = cube_label(L, gi - 1 + (c & 1), gj - 1 + (c >> 1 & 1), gk - 1 + (c >> 2 & 1));
+    unsigned char mask = 0;
+    for (int a = 0; a < 3; ++a) {
+        int same = 1;
+        for (int c = 0; c < 8; ++c) same &= label[c] == label[c ^ (1 << a)];
+        if (same) mask |= (unsigned char)(1u << a);
+    }
+    return mask;
+}
+
+int tm_make_cubes_sliding(test_mesh *m, int n, double size, tm_cube_filter keep, tm_cube_region region,
+                          void *user, double jitter, double boundary_jitter, uint64_t seed,
+                          unsigned char **free_axes, int32_t **regions) {
+    if (free_axes) *free_axes = NULL;
+    if (regions) *regions = NULL;
+    const int st = tm_make_cubes(m, n, size, keep, user, 0.0, seed);
+    if (st != 0) return st;
+    const sliding_labels L = {n, keep, region, user};
+    const double h = size / n;
+    unsigned char *axes = malloc((size_t)m->nverts);
+    int32_t *reg = malloc((size_t)m->ntets * sizeof *reg);
+    if (!axes || !reg) {
+        free(axes);
+        free(reg);
+        tm_free(m);
+        return -1;
+    }
+    tm_rng rng;
+    tm_rng_seed(&rng, seed);
+    for (int32_t v = 0; v < m->nverts; ++v) {
+        int g[3];
+        for (int a = 0; a < 3; ++a) { /* unjittered: exactly idx * h */
+            const double q = m->xyz[3 * v + a] / h;
+            g[a] = (int)(q + 0.5);
+        }
+        axes[v] = free_axes_at(&L, g[0], g[1], g[2]);
+        const double amp = (m->boundary[v] ? boundary_jitter : jitter) * h;
+        for (int a = 0; a < 3; ++a) {
+            const double r = 2.0 * tm_rng_uniform(&rng) - 1.0; /* drawn for every axis: same stream */
+            if (axes[v] >> a & 1) m->xyz[3 * v + a] += r * amp;
+        }
+    }
+    /* the tets of tm_make_cubes: six per kept cube, cubes in k, j, i order */
+    int32_t t = 0;
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const int label = cube_label(&L, i, j, k);
+                if (label < 0) continue;
+                for (int s = 0; s < 6; ++s) reg[t++] = label;
+            }
+    for (int32_t q = 0; q < m->ntets; ++q) {
+        const int32_t *v = &m->tets[4 * q];
+        if (!(tm_orient6(m->xyz + 3 * v[0], m->xyz + 3 * v[1], m->xyz + 3 * v[2], m->xyz + 3 * v[3]) > 0.0)) {
+            free(axes);
+            free(reg);
+            tm_free(m);
+            return -2;
+        }
+    }
+    if (free_axes) *free_axes = axes;
+    else free(axes);
+    if (regions) *regions = reg;
+    else free(reg);
+    return 0;
+}
+
+/* ----------------------------------------------------------- shape maps */
+
+static int all_positive(const test_mesh *m) {
+    for (int32_t q = 0; q < m->ntets; ++q) {
+        const int32_t *v = &m->tets[4 * q];
+        if (!(tm_orient6(m->xyz + 3 * v[0], m->xyz + 3 * v[1], m->xyz + 3 * v[2], m->xyz + 3 * v[3]) > 0.0))
+            return 0;
+    }
+    return 1;
+}
+
+int tm_map_square_to_disk(test_mesh *m) {
+    for (int32_t v = 0; v < m->nverts; ++v) {
+        double *p = &m->xyz[3 * v];
+        const double x = p[0] - 1.0, y = p[1] - 1.0;
+        p[0] = x * sqrt(fmax(0.0, 1.0 - 0.5 * y * y));
+        p[1] = y * sqrt(fmax(0.0, 1.0 - 0.5 * x * x));
+    }
+    return all_positive(m) ? 0 : -2;
+}
+
+int tm_map_cube_to_ball(test_mesh *m) {
+    for (int32_t v = 0; v < m->nverts; ++v) {
+        double *p = &m->xyz[3 * v];
+        const double x = p[0] - 1.0, y = p[1] - 1.0, z = p[2] - 1.0;
+        const double x2 = x * x, y2 = y * y, z2 = z * z;
+        p[0] = x * sqrt(fmax(0.0, 1.0 - 0.5 * y2 - 0.5 * z2 + y2 * z2 / 3.0));
+        p[1] = y * sqrt(fmax(0.0, 1.0 - 0.5 * z2 - 0.5 * x2 + z2 * x2 / 3.0));
+        p[2] = z * sqrt(fmax(0.0, 1.0 - 0.5 * x2 - 0.5 * y2 + x2 * y2 / 3.0));
+    }
+    return all_positive(m) ? 0 : -2;
 }

@@ -60,4 +60,56 @@ double tm_orient6(const double *a, const double *b, const double *c, const doubl
 }
 #endif
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The region id of a kept cube, for tm_make_cubes_sliding. */
+typedef int (*tm_cube_region)(int i, int j, int k, int n, void *user);
+
+/*
+ * The mesh of tm_make_cubes (same vertices, tets and tet order), with every
+ * vertex jittered only along the axes along which the mesh around it looks
+ * the same: an axis is free at a grid vertex when its eight surrounding
+ * cubes, labelled by region id (or "not kept", also outside the grid), are
+ * symmetric under the flip of that axis.  So a vertex inside one region
+ * moves along all three axes, a vertex on a flat face of the domain (or on a
+ * flat interface between regions) in the face's plane, a vertex on a
+ * straight edge of the domain along the edge's line, and a corner not at
+ * all: the domain and every region keep their exact shape and volume.
+ * Vertices on the domain boundary move by up to boundary_jitter * h along
+ * each free axis, the others by up to jitter * h.
+ *   region     region id of each kept cube, or NULL (region 0 everywhere)
+ *   free_axes  if not NULL, receives a malloc'ed array of nverts bit masks
+ *              (bit a: free along axis a; 7 inside a region)
+ *   regions    if not NULL, receives a malloc'ed array of ntets region ids
+ * Returns 0; -1 when out of memory or no cube was kept; -2 when the jitter
+ * inverted a tet (nothing is allocated then).
+ */
+int tm_make_cubes_sliding(test_mesh *m, int n, double size, tm_cube_filter keep, tm_cube_region region,
+                          void *user, double jitter, double boundary_jitter, uint64_t seed,
+                          unsigned char **free_axes, int32_t **regions);
+
+/*
+ * Maps a mesh of [0, 2]^2 x [0, h] onto the cylinder of radius 1 around the
+ * z axis (x, y in [-1, 1] after a shift by -1): the elliptical grid mapping
+ * x' = x sqrt(1 - y^2 / 2), y' = y sqrt(1 - x^2 / 2), z unchanged; the square's
+ * sides go onto the circle.  Returns 0, or -2 when a tet ended with
+ * non-positive volume.
+ */
+int tm_map_square_to_disk(test_mesh *m);
+
+/*
+ * Maps a mesh of [0, 2]^3 onto the unit ball around the origin (coordinates
+ * shifted by -1 first) with the analogous cube-to-ball map
+ * x' = x sqrt(1 - y^2/2 - z^2/2 + y^2 z^2/3) (and cyclically); the cube's
+ * surface goes onto the sphere.  Returns 0, or -2 when a tet ended with
+ * non-positive volume.
+ */
+int tm_map_cube_to_ball(test_mesh *m);
+
+#ifdef __cplusplus
+}
+#endif
+
 #endif /* BODT_TEST_MESH_GEN_H */
