@@ -5,13 +5,13 @@
 namespace bodt {
 
 void RegionSurfaces::build(const TetMesh& mesh, int base, BoundarySurface::Strictness strictness) {
-    regions_ = mesh.regions;
-    std::sort(regions_.begin(), regions_.end());
-    regions_.erase(std::unique(regions_.begin(), regions_.end()), regions_.end());
-    surfaces_.assign(regions_.size(), BoundarySurface());
+    std::vector<int32_t> regions = mesh.regions;
+    std::sort(regions.begin(), regions.end());
+    regions.erase(std::unique(regions.begin(), regions.end()), regions.end());
+    surfaces_.assign(regions.size(), BoundarySurface());
     blocked_.clear();
-    for (size_t k = 0; k < regions_.size(); ++k) {
-        surfaces_[k].build(mesh, base, regions_[k], strictness);
+    for (size_t k = 0; k < regions.size(); ++k) {
+        surfaces_[k].build(mesh, base, regions[k], strictness);
         for (int32_t v : surfaces_[k].blocked()) {
             blocked_.resize(mesh.points.size(), 0);
             blocked_[v] = 1;

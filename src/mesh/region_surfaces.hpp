@@ -25,7 +25,6 @@ public:
 
     int32_t count() const { return static_cast<int32_t>(surfaces_.size()); }
     const BoundarySurface& surface(int32_t k) const { return surfaces_[k]; }
-    int32_t region(int32_t k) const { return regions_[k]; }
 
     // Indices of the surfaces vertex v lies on.
     const int32_t* begin(int32_t v) const { return at_.data() + offset_[v]; }
@@ -33,7 +32,6 @@ public:
 
 private:
     std::vector<BoundarySurface> surfaces_;
-    std::vector<int32_t> regions_;
     std::vector<int32_t> offset_, at_;  // CSR: vertex -> surfaces
     std::vector<char> blocked_;         // per vertex; empty when none is
 };
