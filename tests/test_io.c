@@ -384,6 +384,48 @@ static void test_medit_handwritten(void **state) {
     bodt_mesh_destroy(h);
 }
 
+/* Medit Ridges (indices into Edges) are the mesh's feature edges; they are
+ * written back as Edges + Ridges and survive a round trip.  A ridge that is
+ * not one of the edges is a file error with its line. */
+static void test_medit_ridges(void **state) {
+    (void)state;
+    const char *kCube =
+        "MeshVersionFormatted 2\nDimension 3\n"
+        "Vertices\n8\n"
+        "0 0 0 0\n1 0 0 0\n0 1 0 0\n1 1 0 0\n0 0 1 0\n1 0 1 0\n0 1 1 0\n1 1 1 0\n"
+        "Tetrahedra\n6\n"
+        "1 2 4 8 0\n1 3 7 8 0\n1 5 6 8 0\n1 2 8 6 0\n1 3 8 4 0\n1 5 8 7 0\n"
+        "Edges\n3\n1 2 0\n1 3 0\n4 2 0\n";
+    const char *path = path_of("ridges.mesh");
+    char text[1024];
+    snprintf(text, sizeof text, "%sRidges\n2\n1\n3\nEnd\n", kCube);
+    write_text(path, text);
+    bodt_mesh *h = read_ok(path, 0);
+    int32_t n = -1, edges[4];
+    assert_int_equal(bodt_mesh_get_feature_edges(h, &n, edges, 2), BODT_OK);
+    assert_int_equal(n, 2);
+    const int32_t expected[4] = {0, 1, 1, 3}; /* sorted, 0-based */
+    assert_memory_equal(edges, expected, sizeof expected);
+
+    const char *copy = path_of("ridges_copy.mesh");
+    assert_int_equal(bodt_mesh_write(h, copy), BODT_OK);
+    bodt_mesh *back = read_ok(copy, 0);
+    int32_t n2 = -1, edges2[4];
+    assert_int_equal(bodt_mesh_get_feature_edges(back, &n2, edges2, 2), BODT_OK);
+    assert_int_equal(n2, 2);
+    assert_memory_equal(edges2, expected, sizeof expected);
+    bodt_mesh_destroy(back);
+    bodt_mesh_destroy(h);
+
+    snprintf(text, sizeof text, "%sRidges\n1\n4\nEnd\n", kCube);
+    write_text(path, text);
+    bodt_mesh *bad = NULL;
+    assert_int_equal(bodt_mesh_read(path, &bad), BODT_ERR_IO);
+    assert_null(bad);
+    assert_contains(bodt_mesh_last_error(NULL), "ridges.mesh:28");
+    assert_contains(bodt_mesh_last_error(NULL), "ridge 4");
+}
+
 /* A file with an inverted tet: refused by bodt_mesh_read (BODT_ERR_BAD_MESH,
  * naming the file), accepted by bodt_mesh_read_ex with the flag. */
 static void test_read_inverted_flag(void **state) {
@@ -700,6 +742,7 @@ int main(void) {
         cmocka_unit_test(test_tetgen_handwritten_bases),
         cmocka_unit_test(test_tetgen_negative_orientation),
         cmocka_unit_test(test_medit_handwritten),
+        cmocka_unit_test(test_medit_ridges),
         cmocka_unit_test(test_read_inverted_flag),
         cmocka_unit_test(test_medit_good_reference),
         cmocka_unit_test(test_medit_malformed),

@@ -83,8 +83,7 @@ MeshData read_medit(const std::string& path) {
     int64_t nverts = -1;
     bool saw_tets = false;
     std::vector<int32_t> edges;       // 2 per edge of the Edges section
-    std::vector<int64_t> ridges;      // 1-based indices into edges
-    int64_t ridges_line = 0;
+    std::vector<std::pair<int64_t, int64_t>> ridges;  // 1-based index into edges, line
     std::string_view token;
     if (!in.next(token) || token != "MeshVersionFormatted")
         in.fail("not a Medit mesh: it must start with MeshVersionFormatted");
@@ -141,8 +140,10 @@ MeshData read_medit(const std::string& path) {
                 }
                 break;
             case Section::Ridges:
-                ridges_line = in.line();
-                for (int64_t k = 0; k < n; ++k) ridges.push_back(in.read_int("a ridge"));
+                for (int64_t k = 0; k < n; ++k) {
+                    const int64_t r = in.read_int("a ridge");
+                    ridges.emplace_back(r, in.line());
+                }
                 break;
             case Section::Skip:
                 for (int64_t k = 0; k < n * key->fields; ++k) in.expect(key->name);
@@ -152,9 +153,9 @@ MeshData read_medit(const std::string& path) {
     if (nverts < 0) in.fail("no Vertices section");
     if (!saw_tets) in.fail("no Tetrahedra section");
     const int64_t nedges = static_cast<int64_t>(edges.size() / 2);
-    for (int64_t r : ridges) {
+    for (const auto& [r, line] : ridges) {
         if (r < 1 || r > nedges)
-            throw Error(BODT_ERR_IO, path + ":" + std::to_string(ridges_line) + ": ridge " + std::to_string(r) +
+            throw Error(BODT_ERR_IO, path + ":" + std::to_string(line) + ": ridge " + std::to_string(r) +
                                          " is not one of the " + std::to_string(nedges) + " edges");
         d.feature_edges.insert(d.feature_edges.end(), {edges[2 * (r - 1)], edges[2 * (r - 1) + 1]});
     }
