@@ -71,7 +71,7 @@ void Improver::sweep_laplace(TetMesh& mesh, StepReport& report) const {
 
 // ODT, B-ODT basic and B-ODT: the modes differ only in which vertices move
 // (ODT: inner ones) and how the surface vertices were classified.
-void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) {
+void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const {
     const VertexClasses& cls = classes(mesh, surfaces);
     BodtSmoother smoother(surfaces, cls);
     MoveGuard guard({params_.min_stretch, params_.backtrack_steps, params_.never_worse != 0});

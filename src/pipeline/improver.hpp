@@ -3,6 +3,7 @@
 // Gauss-Seidel sweep over the vertices.
 #pragma once
 
+#include "bodt.h"
 #include "features/vertex_classes.hpp"
 #include "mesh/region_surfaces.hpp"
 #include "mesh/tet_mesh.hpp"
@@ -41,9 +42,9 @@ public:
 
 private:
     void sweep_laplace(TetMesh& mesh, StepReport& report) const;
-    void sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report);
+    void sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const;
 
-    int mode_ = 4;  // BODT_MODE_BODT
+    int mode_ = BODT_MODE_BODT;
     Params params_;
     int32_t steps_done_ = 0;
     mutable VertexClasses classes_;  // a cache: computing it changes no result
