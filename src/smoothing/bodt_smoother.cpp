@@ -22,17 +22,17 @@ int local_index(const Tet& t, int32_t v) {
 Vec3 BodtSmoother::line_direction(const TetMesh& mesh, int32_t v, const std::array<int32_t, 2>& line) {
     const Vec3& x0 = mesh.points[v];
     const Vec3 chord = mesh.points[line[0]] - mesh.points[line[1]];
-    surfaces_.surface(*surfaces_.begin(v)).one_ring(v, ring_);
-    const auto a = std::find(ring_.begin(), ring_.end(), line[0]);
-    const auto b = std::find(ring_.begin(), ring_.end(), line[1]);
-    if (a == ring_.end() || b == ring_.end()) return chord;
-    const size_t m = ring_.size(), ia = static_cast<size_t>(a - ring_.begin());
-    const size_t ib = static_cast<size_t>(b - ring_.begin());
+    const std::vector<int32_t>& ring = first_ring_;  // walked by target() already
+    const auto a = std::find(ring.begin(), ring.end(), line[0]);
+    const auto b = std::find(ring.begin(), ring.end(), line[1]);
+    if (a == ring.end() || b == ring.end()) return chord;
+    const size_t m = ring.size(), ia = static_cast<size_t>(a - ring.begin());
+    const size_t ib = static_cast<size_t>(b - ring.begin());
     Vec3 side[2] = {Vec3::Zero(), Vec3::Zero()};
     for (size_t i = 0; i < m; ++i) {
         // Triangle (x0, y_i, y_{i+1}) lies on side 0 when i is in [ia, ib) cyclically.
         const bool first = ia < ib ? (i >= ia && i < ib) : (i >= ia || i < ib);
-        side[first ? 0 : 1] += (mesh.points[ring_[i]] - x0).cross(mesh.points[ring_[(i + 1) % m]] - x0);
+        side[first ? 0 : 1] += (mesh.points[ring[i]] - x0).cross(mesh.points[ring[(i + 1) % m]] - x0);
     }
     const Vec3 d = side[0].cross(side[1]);
     return d.norm() > 1e-6 * side[0].norm() * side[1].norm() ? d : chord;
@@ -107,11 +107,13 @@ Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, Vec3& target, std::vec
 
     normals_.clear();
     for (const int32_t* k = surfaces_.begin(v); k != surfaces_.end(v); ++k) {
-        surfaces_.surface(*k).one_ring(v, ring_);
+        // The first surface's ring is kept for line_direction.
+        std::vector<int32_t>& ring = k == surfaces_.begin(v) ? first_ring_ : ring_;
+        surfaces_.surface(*k).one_ring(v, ring);
         Vec3 n = Vec3::Zero();
-        const size_t m = ring_.size();
+        const size_t m = ring.size();
         for (size_t i = 0; i < m; ++i) {
-            const int32_t a = ring_[i], b = ring_[(i + 1) % m];
+            const int32_t a = ring[i], b = ring[(i + 1) % m];
             n += add_ring_triangle(model, x0, mesh.points[a], mesh.points[b]);
             surface_faces.push_back(FaceKey::of(v, a, b));
         }

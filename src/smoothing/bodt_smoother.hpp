@@ -32,7 +32,8 @@ private:
 
     const RegionSurfaces& surfaces_;
     const VertexClasses& classes_;
-    std::vector<int32_t> ring_;
+    std::vector<int32_t> first_ring_;  // the one-ring of v on its first surface
+    std::vector<int32_t> ring_;        // scratch for the others
     std::vector<Vec3> normals_;  // one ring normal sum_i S_i n_i per surface at v (eq. B.1)
     std::vector<FaceKey> faces_;
 };
