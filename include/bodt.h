@@ -44,10 +44,10 @@ extern "C" {
 /* ---------------------------------------------------------------- version */
 
 #define BODT_VERSION_MAJOR 0
-#define BODT_VERSION_MINOR 2
+#define BODT_VERSION_MINOR 3
 #define BODT_VERSION_PATCH 0
 /* MAJOR * 10000 + MINOR * 100 + PATCH, comparable with bodt_version_number() */
-#define BODT_VERSION_NUMBER 200
+#define BODT_VERSION_NUMBER 300
 
 /* The version of the library actually loaded, e.g. "0.1.0". */
 BODT_API const char *bodt_version_string(void);
@@ -212,6 +212,30 @@ enum bodt_vertex_class {
 BODT_API int bodt_mesh_get_vertex_classes(const bodt_mesh *mesh,
                                           int32_t *classes, size_t capacity);
 
+/*
+ * Where the current mesh came from, so a solver can carry its fields over
+ * after steps that changed the connectivity.  Vertices of the input (the
+ * mesh as created or read) keep their index, also when an operation left
+ * them unused; vertices made by operations are appended.
+ *
+ * Vertex parents: value(v) = sum of weights[k] * value(parents[k]) for k in
+ * [offsets[v], offsets[v+1]), parents being input vertices (in the caller's
+ * base), weights summing to 1: an input vertex is its own single parent; a
+ * made vertex interpolates the input where it was made (later moves of any
+ * vertex are not tracked, as with smoothing).  offsets has nverts + 1
+ * entries counted from 0; bodt_mesh_get_parent_count gives offsets[nverts].
+ */
+BODT_API int bodt_mesh_get_parent_count(const bodt_mesh *mesh, int64_t *count);
+BODT_API int bodt_mesh_get_vertex_parents(const bodt_mesh *mesh,
+                                          int64_t *offsets,
+                                          size_t offsets_capacity,
+                                          int32_t *parents, double *weights,
+                                          size_t capacity);
+/* ntets input tet indices (caller's base): the input tet each tet lies in
+ * (for a tet made by a flip, the one that held its centroid). */
+BODT_API int bodt_mesh_get_tet_origins(const bodt_mesh *mesh,
+                                       int32_t *origins, size_t capacity);
+
 /* ---------------------------------------------------------------- quality */
 
 /*
@@ -313,8 +337,42 @@ enum bodt_param {
      * mu1 / mu0 exceeds this ... */
     BODT_PARAM_EDGE_RATIO = 6,
     /* double, default 0.2: ... and a corner when mu2 / mu0 exceeds this. */
-    BODT_PARAM_CORNER_RATIO = 7
+    BODT_PARAM_CORNER_RATIO = 7,
+    /* int, default BODT_OPS_MODE_DEFAULT: which operations a step does, a
+     * bitmask of enum bodt_op.  The mode's default is SMOOTH | FLIP | INSERT
+     * for BODT_MODE_BODT (paper 000 Fig. 1: insertion where needed, then
+     * smoothing, repeated) and SMOOTH for the other modes. */
+    BODT_PARAM_OPS = 8,
+    /* int 0/1, default 0: 1 keeps every boundary and interface triangle as
+     * it is (no split, flip or collapse there); BODT_MODE_LAPLACE and
+     * BODT_MODE_ODT always keep them.  Otherwise only flat parts of the
+     * surface are retriangulated, with their markers, and only splits put
+     * new vertices on the surface: its shape never changes. */
+    BODT_PARAM_KEEP_SURFACE = 9,
+    /* double, degrees, default 15: a tet with a dihedral angle below this or
+     * above 180 minus this is bad: BODT_OP_INSERT breaks bad spades, caps
+     * and slivers, BODT_OP_COLLAPSE bad tets with a short edge. */
+    BODT_PARAM_BAD_ANGLE = 10
 };
+
+/*
+ * Operations a step may do (BODT_PARAM_OPS).  Each connectivity change is
+ * kept only if it raises the worst dihedral angle of the tets it touches
+ * (with the new vertices relocated by ODT): a step never makes the mesh's
+ * worst tet worse.
+ */
+enum bodt_op {
+    BODT_OP_SMOOTH = 1,   /* move vertices (the mode's smoothing)           */
+    BODT_OP_FLIP = 2,     /* edge removal and 2-3 flips around tets with an
+                             angle outside [30, 150] degrees (paper 001
+                             Algorithm 4, for every bad tet)                */
+    BODT_OP_INSERT = 4,   /* split spades, caps and slivers (paper 000
+                             sec. 2.3), conforming: every tet on the split
+                             edge or face is split                          */
+    BODT_OP_COLLAPSE = 8  /* collapse the short edge of a bad tet (paper 002
+                             sec. 3.5.1 position rules)                     */
+};
+#define BODT_OPS_MODE_DEFAULT (-1)
 
 BODT_API int bodt_set_param_int(bodt_mesh *mesh, int key, int32_t value);
 BODT_API int bodt_set_param_double(bodt_mesh *mesh, int key, double value);
@@ -339,6 +397,10 @@ typedef struct bodt_step_report {
     double min_dihedral;    /* after the step, degrees                    */
     double max_dihedral;
     double min_stretch;
+    int32_t flips;              /* edge removals and 2-3 flips kept        */
+    int32_t vertices_inserted;  /* by BODT_OP_INSERT                       */
+    int32_t edges_collapsed;    /* by BODT_OP_COLLAPSE                     */
+    int32_t reserved1;
 } bodt_step_report;
 
 /* One improvement sweep in the current mode.  report may be NULL. */

@@ -23,17 +23,15 @@
  *   fixed         fixed vertices never move in any mode
  *   classes       box (also with only feature edges or only tensor voting),
  *                 cylinder, ball, the other modes, two regions
- *   flat caps     the cylinder's flat caps stay flat under BODT: FAILS with
- *                 the library as of this writing -- feature-line vertices on
- *                 the curved rim move along the chord of their line
- *                 neighbours projected on the star's tangent plane, which
- *                 leaves the cap plane (src/smoothing/bodt_smoother.cpp,
- *                 BodtSmoother::move_basis)
+ *   flat caps     the cylinder's flat caps stay flat under BODT (the rim's
+ *                 feature-line vertices stay in the cap plane)
  *   two regions   region volumes (BODT and BODT_BASIC) and the interface
  *                 plane (BODT) kept
- *   robustness    2000 steps mixing modes and NEVER_WORSE: no inverted tet,
- *                 volume kept, consistent reports, extreme angles never
- *                 worse with NEVER_WORSE = 1
+ *   robustness    2000 steps mixing modes and NEVER_WORSE, BODT with its
+ *                 default flips and insertion: no inverted tet, volume
+ *                 kept, consistent reports, extreme angles never worse with
+ *                 NEVER_WORSE = 1
+ * Every other test sets BODT_PARAM_OPS to BODT_OP_SMOOTH: smoothing only.
  *   non-manifold  regions alternating per tet, and two regions touching
  *                 themselves along a line: BODT still works, volumes stay,
  *                 non-manifold vertices are FIXED and FIXED vertices stay
@@ -87,6 +85,9 @@ static bodt_mesh *create(const test_mesh *m, int mode) {
         fail_msg("create: %s", bodt_mesh_last_error(NULL));
     cleanup_add(h, destroy_mesh);
     assert_int_equal(bodt_set_mode(h, mode), BODT_OK);
+    /* These tests are about smoothing: the connectivity stays (test_ops.c
+     * and test_robustness below cover the flips and insertion). */
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_OPS, BODT_OP_SMOOTH), BODT_OK);
     return h;
 }
 
@@ -725,7 +726,7 @@ static void test_robustness(void **state) {
     (void)state;
     static const int modes[3] = {BODT_MODE_ODT, BODT_MODE_BODT_BASIC, BODT_MODE_BODT};
     int total_steps = 0;
-    long moved = 0, npd = 0, rejected = 0;
+    long moved = 0, npd = 0, rejected = 0, flips = 0, inserted = 0;
     for (int mesh = 0; mesh < 10; ++mesh) {
         const tm_cube_filter keep = mesh % 3 == 1 ? keep_l_shape : mesh % 3 == 2 ? keep_notch : NULL;
         const tm_cube_region region = mesh % 4 == 3 ? region_halves : NULL;
@@ -754,12 +755,12 @@ static void test_robustness(void **state) {
         }
         cleanup_add(regions, free);
         bodt_mesh *h = create(m, BODT_MODE_BODT);
+        assert_int_equal(bodt_set_param_int(h, BODT_PARAM_OPS, BODT_OPS_MODE_DEFAULT), BODT_OK);
         if (region) assert_int_equal(bodt_mesh_set_regions(h, regions), BODT_OK);
         bodt_quality q;
         get_quality(h, &q);
         const double v0 = q.volume;
         double prev_min = q.min_dihedral, prev_max = q.max_dihedral;
-        double *xyz = talloc(3 * (size_t)m->nverts * sizeof *xyz);
         for (int k = 0; k < 200; ++k) {
             const int mode = modes[(k / 7 + mesh) % 3], nw = (k / 11 + mesh) % 2;
             assert_int_equal(bodt_set_mode(h, mode), BODT_OK);
@@ -770,24 +771,34 @@ static void test_robustness(void **state) {
             assert_int_equal(r.step, k + 1);
             assert_true(r.vertices_moved >= 0 && r.moves_rejected >= 0 && r.not_positive_definite >= 0);
             assert_true(r.moves_shortened >= 0 && r.moves_shortened <= r.vertices_moved);
-            if (!(r.vertices_moved + r.moves_rejected + r.not_positive_definite <= m->nverts))
+            int32_t nverts_now = 0;
+            assert_int_equal(bodt_mesh_get_counts(h, &nverts_now, NULL, NULL), BODT_OK);
+            if (!(r.vertices_moved + r.moves_rejected + r.not_positive_definite <= nverts_now))
                 fail_msg("mesh %d step %d: %d moved + %d rejected + %d not positive definite > %d vertices", mesh,
-                         k + 1, r.vertices_moved, r.moves_rejected, r.not_positive_definite, m->nverts);
+                         k + 1, r.vertices_moved, r.moves_rejected, r.not_positive_definite, nverts_now);
             /* (a vertex at its target already counts as moved, by a distance of 0) */
             if (!(r.max_move >= 0.0 && (r.max_move == 0.0 || r.vertices_moved > 0)))
                 fail_msg("mesh %d step %d (mode %d): max_move %g with %d vertices moved (%d shortened)", mesh, k + 1,
                          mode, r.max_move, r.vertices_moved, r.moves_shortened);
             /* every tet positive, by the test's own orientation test; the
              * volume kept (the report carries the mesh's quality after the
-             * step, checked against bodt_mesh_quality every 10 steps) */
-            assert_int_equal(bodt_mesh_get_vertices(h, xyz, 3 * (size_t)m->nverts), BODT_OK);
+             * step, checked against bodt_mesh_quality every 10 steps).  In
+             * BODT_MODE_BODT the connectivity changes: read it back. */
+            int32_t nv = 0, nt = 0;
+            assert_int_equal(bodt_mesh_get_counts(h, &nv, &nt, NULL), BODT_OK);
+            double *xyz = malloc(3 * (size_t)nv * sizeof *xyz);
+            int32_t *tets = malloc(4 * (size_t)nt * sizeof *tets);
+            assert_int_equal(bodt_mesh_get_vertices(h, xyz, 3 * (size_t)nv), BODT_OK);
+            assert_int_equal(bodt_mesh_get_tets(h, tets, 4 * (size_t)nt), BODT_OK);
             double vol = 0.0;
-            for (int32_t t = 0; t < m->ntets; ++t) {
-                const int32_t *c = &m->tets[4 * t];
+            for (int32_t t = 0; t < nt; ++t) {
+                const int32_t *c = &tets[4 * t];
                 const double o = tm_orient6(&xyz[3 * c[0]], &xyz[3 * c[1]], &xyz[3 * c[2]], &xyz[3 * c[3]]);
                 if (!(o > 0.0)) fail_msg("mesh %d step %d (mode %d): tet %d inverted (%g)", mesh, k + 1, mode, t, o);
                 vol += o / 6.0;
             }
+            free(xyz);
+            free(tets);
             if (!(r.min_stretch > 0.0)) fail_msg("mesh %d step %d: min stretch %g", mesh, k + 1, r.min_stretch);
             if (!(fabs(vol - v0) <= 1e-12 * v0))
                 fail_msg("mesh %d step %d (mode %d): volume %.17g -> %.17g", mesh, k + 1, mode, v0, vol);
@@ -806,10 +817,12 @@ static void test_robustness(void **state) {
             moved += r.vertices_moved;
             rejected += r.moves_rejected;
             npd += r.not_positive_definite;
+            flips += r.flips;
+            inserted += r.vertices_inserted;
         }
     }
-    print_message("%d steps, %ld vertex moves, %ld rejected, %ld not positive definite\n", total_steps, moved,
-                  rejected, npd);
+    print_message("%d steps, %ld vertex moves, %ld rejected, %ld not positive definite, %ld flips, %ld inserted\n",
+                  total_steps, moved, rejected, npd, flips, inserted);
     assert_int_equal(total_steps, 2000);
 }
 

@@ -221,6 +221,9 @@ void fill_step_report(const bodt::StepReport& r, bodt_step_report* out) {
     full.min_dihedral = r.min_dihedral;
     full.max_dihedral = r.max_dihedral;
     full.min_stretch = r.min_stretch;
+    full.flips = r.flips;
+    full.vertices_inserted = r.vertices_inserted;
+    full.edges_collapsed = r.edges_collapsed;
     fill_sized(out, full);
 }
 
@@ -426,6 +429,54 @@ int bodt_mesh_get_vertex_classes(const bodt_mesh* mesh, int32_t* classes, size_t
         require_capacity(capacity, mesh->mesh.points.size(), "classes");
         const bodt::VertexClasses& c = mesh->improver.classes(mesh->mesh, mesh->surfaces);
         for (size_t v = 0; v < c.cls.size(); ++v) classes[v] = static_cast<int32_t>(c.cls[v]);
+    });
+}
+
+int bodt_mesh_get_parent_count(const bodt_mesh* mesh, int64_t* count) {
+    return with_mesh(mesh, [&] {
+        require(count != nullptr, "count is NULL");
+        const bodt::TetMesh& m = mesh->mesh;
+        int64_t n = m.num_input_vertices();
+        for (const bodt::Parents& p : m.new_parents) n += static_cast<int64_t>(p.size());
+        *count = n;
+    });
+}
+
+int bodt_mesh_get_vertex_parents(const bodt_mesh* mesh, int64_t* offsets, size_t offsets_capacity, int32_t* parents,
+                                 double* weights, size_t capacity) {
+    return with_mesh(mesh, [&] {
+        require(offsets != nullptr && parents != nullptr && weights != nullptr, "offsets, parents or weights is NULL");
+        const bodt::TetMesh& m = mesh->mesh;
+        const int32_t input = m.num_input_vertices();
+        require_capacity(offsets_capacity, m.points.size() + 1, "offsets");
+        size_t total = static_cast<size_t>(input);
+        for (const bodt::Parents& p : m.new_parents) total += p.size();
+        require_capacity(capacity, total, "parents");
+        const int base = mesh->index_base;
+        size_t k = 0;
+        for (int32_t v = 0; v < m.num_vertices(); ++v) {
+            offsets[v] = static_cast<int64_t>(k);
+            if (v < input) {
+                parents[k] = v + base;
+                weights[k++] = 1.0;
+                continue;
+            }
+            for (const bodt::Parent& p : m.new_parents[v - input]) {
+                parents[k] = p.vertex + base;
+                weights[k++] = p.weight;
+            }
+        }
+        offsets[m.num_vertices()] = static_cast<int64_t>(k);
+    });
+}
+
+int bodt_mesh_get_tet_origins(const bodt_mesh* mesh, int32_t* origins, size_t capacity) {
+    return with_mesh(mesh, [&] {
+        require(origins != nullptr, "origins is NULL");
+        const bodt::TetMesh& m = mesh->mesh;
+        require_capacity(capacity, m.tets.size(), "origins");
+        for (int32_t t = 0; t < m.num_tets(); ++t)
+            origins[t] = (m.tet_origin.empty() ? t : m.tet_origin[t]) + mesh->index_base;
     });
 }
 

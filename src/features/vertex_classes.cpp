@@ -148,6 +148,7 @@ VertexClasses classify_vertices(const TetMesh& mesh, const RegionSurfaces& surfa
         }
         if (c != VertexClass::FeatureLine || count[v] != 2) out.line[v] = {-1, -1};
     }
+    out.feature_edges = std::move(features);
     return out;
 }
 

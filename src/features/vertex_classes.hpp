@@ -40,6 +40,8 @@ struct VertexClasses {
     // neighbours along the line (the line's direction is their chord);
     // {-1, -1} when the line came from tensor voting (direction e2).
     std::vector<std::array<int32_t, 2>> line;
+    // The feature edges the classes came from (detected and the caller's).
+    EdgeSet feature_edges;
 };
 
 // The caller's feature edges come from mesh.feature_edges.

@@ -52,6 +52,14 @@ enum VertexFlag : uint8_t {
     kUnused = 8,       // in no tet
 };
 
+// One term of a new vertex's interpolation from the input mesh:
+// value(new) = sum of weight * value(vertex) over its parents.
+struct Parent {
+    int32_t vertex;  // an input vertex
+    double weight;
+};
+using Parents = std::vector<Parent>;
+
 // A face of the mesh that the caller sees: boundary, interface or marked.
 struct SurfaceFace {
     std::array<int32_t, 3> v;  // oriented as documented in bodt.h
@@ -72,9 +80,16 @@ public:
     // their neighbours'; empty when there are none.  Faces are oriented by
     // the corrected order, so the surfaces stay consistent.
     std::vector<uint8_t> reversed;
+    // History since the input, for carrying the caller's fields over: the
+    // input tet each tet came from (empty: tet t is input tet t), and the
+    // parents of each vertex made by an operation.  Made vertices are the
+    // last new_parents.size() ones; input vertices keep their index.
+    std::vector<int32_t> tet_origin;
+    std::vector<Parents> new_parents;
 
     int32_t num_vertices() const { return static_cast<int32_t>(points.size()); }
     int32_t num_tets() const { return static_cast<int32_t>(tets.size()); }
+    int32_t num_input_vertices() const { return num_vertices() - static_cast<int32_t>(new_parents.size()); }
 
     TetPoints tet_points(int32_t t) const {
         const Tet& q = tets[t];

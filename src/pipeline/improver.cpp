@@ -6,6 +6,7 @@
 #include "smoothing/bodt_smoother.hpp"
 #include "smoothing/laplace.hpp"
 #include "smoothing/move_guard.hpp"
+#include "topology/topology_pass.hpp"
 
 #include <string>
 
@@ -90,16 +91,69 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepRep
     }
 }
 
-StepReport Improver::step(TetMesh& mesh, const RegionSurfaces& surfaces) {
-    const std::vector<Vec3> saved = mesh.points;
+int32_t Improver::ops() const {
+    if (params_.ops >= 0) return params_.ops;
+    return mode_ == BODT_MODE_BODT ? BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT : BODT_OP_SMOOTH;
+}
+
+// Flips, insertion and collapse on an editable copy, written back only when
+// something changed.  A mesh holding accepted inverted tets is left to the
+// modes that repair those.
+void Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report) {
+    const int32_t bits = ops();
+    if (!(bits & (BODT_OP_FLIP | BODT_OP_INSERT | BODT_OP_COLLAPSE))) return;
+    for (uint8_t r : mesh.reversed)
+        if (r) return;
+    TopologySettings settings;
+    settings.rules.surface_may_change =
+        params_.keep_surface == 0 && (mode_ == BODT_MODE_BODT || mode_ == BODT_MODE_BODT_BASIC);
+    settings.rules.min_stretch = params_.min_stretch;
+    settings.rules.never_worse = params_.never_worse != 0;
+    settings.bad_angle_deg = params_.bad_angle;
+    settings.flip = bits & BODT_OP_FLIP;
+    settings.insert = bits & BODT_OP_INSERT;
+    settings.collapse = bits & BODT_OP_COLLAPSE;
+    EditableMesh editable(mesh, classes(mesh, surfaces));
+    const TopologyCounts counts = improve_topology(editable, settings);
+    if (!counts.changed()) return;
+    editable.write_to(mesh);
+    mesh.build_topology(0);
+    RegionSurfaces rebuilt;
+    rebuilt.build(mesh, 0, BoundarySurface::Strictness::Tolerant);
+    surfaces = std::move(rebuilt);
+    invalidate_classes();
+    report.flips = counts.flips;
+    report.vertices_inserted = counts.inserted;
+    report.edges_collapsed = counts.collapsed;
+}
+
+StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
+    const bool topology = ops() & (BODT_OP_FLIP | BODT_OP_INSERT | BODT_OP_COLLAPSE);
+    // Rolling back a step that may change connectivity needs the whole mesh.
+    const std::vector<Vec3> saved_points = topology ? std::vector<Vec3>() : mesh.points;
+    TetMesh saved_mesh;
+    RegionSurfaces saved_surfaces;
+    if (topology) {
+        saved_mesh = mesh;
+        saved_surfaces = surfaces;
+    }
     StepReport report;
     try {
-        if (mode_ == BODT_MODE_LAPLACE) sweep_laplace(mesh, report);
-        else sweep_bodt(mesh, surfaces, report);
+        if (ops() & BODT_OP_SMOOTH) {
+            if (mode_ == BODT_MODE_LAPLACE) sweep_laplace(mesh, report);
+            else sweep_bodt(mesh, surfaces, report);
+        }
+        change_topology(mesh, surfaces, report);
         for (const Vec3& p : mesh.points)
             if (!p.allFinite()) throw Error(BODT_ERR_NUMERIC, "a vertex position became non-finite");
     } catch (...) {
-        mesh.points = saved;
+        if (topology) {
+            mesh = std::move(saved_mesh);
+            surfaces = std::move(saved_surfaces);
+            invalidate_classes();
+        } else {
+            mesh.points = saved_points;
+        }
         throw;
     }
     const QualitySummary q = summarize_quality(mesh);

@@ -1,6 +1,7 @@
 // The improvement pipeline of a mesh handle: the current mode, its
-// parameters, the vertex classes the mode works with, and `step`, one
-// Gauss-Seidel sweep over the vertices.
+// parameters, the vertex classes the mode works with, and `step`: one
+// Gauss-Seidel sweep over the vertices, then flips and vertex insertion
+// where tets are still bad (paper 000 Fig. 1).
 #pragma once
 
 #include "bodt.h"
@@ -15,6 +16,7 @@ namespace bodt {
 
 struct StepReport {
     int32_t step = 0;
+    int32_t flips = 0, vertices_inserted = 0, edges_collapsed = 0;
     int32_t vertices_moved = 0;
     int32_t moves_rejected = 0;
     int32_t moves_shortened = 0;
@@ -37,12 +39,18 @@ public:
     void invalidate_classes() { classes_valid_ = false; }
     const VertexClasses& classes(const TetMesh& mesh, const RegionSurfaces& surfaces) const;
 
-    // One sweep.  If anything throws, the mesh is restored as it was.
-    StepReport step(TetMesh& mesh, const RegionSurfaces& surfaces);
+    // The bodt_op bits a step does: the parameter, or the mode's default.
+    int32_t ops() const;
+
+    // One step: a smoothing sweep, then the connectivity changes (which
+    // rebuild the mesh's topology and surfaces).  If anything throws, the
+    // mesh and surfaces are restored as they were.
+    StepReport step(TetMesh& mesh, RegionSurfaces& surfaces);
 
 private:
     void sweep_laplace(TetMesh& mesh, StepReport& report) const;
     void sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const;
+    void change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
 
     int mode_ = BODT_MODE_BODT;
     Params params_;

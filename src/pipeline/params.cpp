@@ -27,6 +27,9 @@ constexpr Info kParams[] = {
     {BODT_PARAM_FEATURE_ANGLE, "BODT_PARAM_FEATURE_ANGLE", Type::Double, 0.0, 180.0},
     {BODT_PARAM_EDGE_RATIO, "BODT_PARAM_EDGE_RATIO", Type::Double, 0.0, 1.0},
     {BODT_PARAM_CORNER_RATIO, "BODT_PARAM_CORNER_RATIO", Type::Double, 0.0, 1.0},
+    {BODT_PARAM_OPS, "BODT_PARAM_OPS", Type::Int, -1, BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT | BODT_OP_COLLAPSE},
+    {BODT_PARAM_KEEP_SURFACE, "BODT_PARAM_KEEP_SURFACE", Type::Int, 0, 1},
+    {BODT_PARAM_BAD_ANGLE, "BODT_PARAM_BAD_ANGLE", Type::Double, 0.0, 60.0},
 };
 
 const Info& lookup(int key, Type want) {
@@ -48,6 +51,16 @@ void check_range(const Info& info, double value) {
                                                    std::to_string(value));
 }
 
+// The member behind an int key (already looked up).
+int32_t& int_field(Params& p, int key) {
+    switch (key) {
+        case BODT_PARAM_BACKTRACK_STEPS: return p.backtrack_steps;
+        case BODT_PARAM_OPS: return p.ops;
+        case BODT_PARAM_KEEP_SURFACE: return p.keep_surface;
+        default: return p.never_worse;
+    }
+}
+
 // The member behind a double key (already looked up).
 double& double_field(Params& p, int key) {
     switch (key) {
@@ -55,6 +68,7 @@ double& double_field(Params& p, int key) {
         case BODT_PARAM_MIN_STRETCH: return p.min_stretch;
         case BODT_PARAM_FEATURE_ANGLE: return p.feature_angle;
         case BODT_PARAM_EDGE_RATIO: return p.edge_ratio;
+        case BODT_PARAM_BAD_ANGLE: return p.bad_angle;
         default: return p.corner_ratio;
     }
 }
@@ -63,10 +77,7 @@ double& double_field(Params& p, int key) {
 
 void set_param_int(Params& p, int key, int32_t value) {
     check_range(lookup(key, Type::Int), value);
-    switch (key) {
-        case BODT_PARAM_BACKTRACK_STEPS: p.backtrack_steps = value; break;
-        case BODT_PARAM_NEVER_WORSE: p.never_worse = value; break;
-    }
+    int_field(p, key) = value;
 }
 
 void set_param_double(Params& p, int key, double value) {
@@ -76,7 +87,7 @@ void set_param_double(Params& p, int key, double value) {
 
 int32_t get_param_int(const Params& p, int key) {
     lookup(key, Type::Int);
-    return key == BODT_PARAM_BACKTRACK_STEPS ? p.backtrack_steps : p.never_worse;
+    return int_field(const_cast<Params&>(p), key);
 }
 
 double get_param_double(const Params& p, int key) {

@@ -13,6 +13,9 @@ struct Params {
     double feature_angle = 30.0;   // BODT_PARAM_FEATURE_ANGLE, degrees
     double edge_ratio = 0.2;       // BODT_PARAM_EDGE_RATIO
     double corner_ratio = 0.2;     // BODT_PARAM_CORNER_RATIO
+    int32_t ops = -1;              // BODT_PARAM_OPS: bodt_op bits, -1 the mode's default
+    int32_t keep_surface = 0;      // BODT_PARAM_KEEP_SURFACE
+    double bad_angle = 15.0;       // BODT_PARAM_BAD_ANGLE, degrees
 };
 
 // Each throws Error(BODT_ERR_INVALID_ARGUMENT) for an unknown key, a key of

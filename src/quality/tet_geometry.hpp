@@ -95,6 +95,27 @@ inline TetShape tet_shape(const TetPoints& p) {
 // Stretch: 1 for the regular tet, 0 when flat, negative when inverted.
 inline double stretch(const TetPoints& p) { return tet_shape(p).stretch; }
 
+// The sine of the tet's worst dihedral angle, small for angles near 0 and
+// near 180 degrees alike: the quality the topology operations maximise.
+// sin(theta_e) = 3 V |e| / (2 A_i A_j) for the faces i, j at edge e, which
+// with 6V = det and |n| = 2A is det |e| / (|n_i| |n_j|).  Not positively
+// oriented (certified): -1.
+inline double min_dihedral_sine(const TetPoints& p) {
+    const Orientation o = orient(p[0], p[1], p[2], p[3]);
+    if (o.sign <= 0) return -1.0;
+    std::array<double, 4> n;
+    for (int i = 0; i < 4; ++i) {
+        const auto& f = kFaceVertex[i];
+        n[i] = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
+    }
+    double worst = 1.0;
+    for (int e = 0; e < 6; ++e) {
+        const double len = (p[kEdgeVertex[e][1]] - p[kEdgeVertex[e][0]]).norm();
+        worst = std::min(worst, o.det6 * len / (n[kEdgeFaces[e][0]] * n[kEdgeFaces[e][1]]));
+    }
+    return worst;
+}
+
 // The six interior dihedral angles in degrees, in kEdgeVertex order.  The
 // angle at an edge is pi minus the angle between the outward normals of the
 // two faces that meet there.  Meaningful for positively oriented tets only.

@@ -1,0 +1,202 @@
+// Half-edge and edge collapse (paper 002 sec. 3.5.1).
+#include "topology/op_support.hpp"
+#include "topology/operations.hpp"
+
+#include <algorithm>
+
+namespace bodt {
+
+namespace {
+
+bool holds(const Tet& q, int32_t v) { return std::find(q.begin(), q.end(), v) != q.end(); }
+
+bool has_tet(const EditableMesh& mesh, const Tet& q) {
+    for (int32_t t : mesh.tets_of(q[0])) {
+        const Tet& s = mesh.tet(t);
+        if (holds(s, q[1]) && holds(s, q[2]) && holds(s, q[3])) return true;
+    }
+    return false;
+}
+
+bool has_face(const EditableMesh& mesh, int32_t a, int32_t b, int32_t c) {
+    int32_t t[2];
+    return mesh.face_tets(FaceKey::of(a, b, c), t) > 0;
+}
+
+// The link condition (Dey et al.), with the outside of the domain as one
+// more vertex: the vertices and edges that v and w both see are exactly
+// those around the edge (v, w), so the collapse glues nothing together.
+bool link_condition(const EditableMesh& mesh, int32_t v, int32_t w) {
+    std::vector<int32_t> nv, nw, common;
+    mesh.neighbors(v, nv);
+    mesh.neighbors(w, nw);
+    std::set_intersection(nv.begin(), nv.end(), nw.begin(), nw.end(), std::back_inserter(common));
+    for (int32_t x : common) {
+        if (!has_face(mesh, v, w, x)) return false;
+        // Both (v, x) and (w, x) on the surface: (v, w, x) must be a surface face.
+        if (mesh.is_surface_edge(v, x) && mesh.is_surface_edge(w, x) && !mesh.is_surface_face(FaceKey::of(v, w, x)))
+            return false;
+    }
+    for (size_t i = 0; i < common.size(); ++i)
+        for (size_t j = i + 1; j < common.size(); ++j) {
+            const int32_t x = common[i], y = common[j];
+            if (has_face(mesh, v, x, y) && has_face(mesh, w, x, y) && !has_tet(mesh, {v, w, x, y})) return false;
+        }
+    return true;
+}
+
+// Where v may go along its feature edges: to w, over a feature edge, with
+// the line straight at v so that it keeps its shape.
+bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double length) {
+    std::vector<int32_t> around;
+    mesh.neighbors(v, around);
+    std::vector<int32_t> along;
+    for (int32_t x : around)
+        if (mesh.is_feature_edge(v, x)) along.push_back(x);
+    if (along.empty()) return mesh.vertex_class(v) != VertexClass::FeatureLine;
+    if (along.size() != 2 || !mesh.is_feature_edge(v, w)) return false;
+    const int32_t u = along[0] == w ? along[1] : along[0];
+    const Vec3 d = mesh.point(w) - mesh.point(u);
+    const Vec3 off = (mesh.point(v) - mesh.point(u)).cross(d);
+    return off.norm() <= 1e-9 * d.norm() * length && (mesh.point(v) - mesh.point(u)).dot(d) > 0.0;
+}
+
+}  // namespace
+
+bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const TopologyRules& rules, double must_exceed) {
+    const VertexClass cv = mesh.vertex_class(v);
+    if (v == w || cv == VertexClass::Corner || cv == VertexClass::Fixed || cv == VertexClass::Unused) return false;
+    std::vector<int32_t> star = mesh.tets_of(v);
+    if (std::none_of(star.begin(), star.end(), [&](int32_t t) { return holds(mesh.tet(t), w); })) return false;
+    const bool v_on_surface = cv != VertexClass::Interior;
+    if (v_on_surface && (!rules.surface_may_change || !mesh.is_surface_edge(v, w))) return false;
+    const double length = (mesh.point(w) - mesh.point(v)).norm();
+    if (!feature_lines_allow(mesh, v, w, length)) return false;
+    if (!link_condition(mesh, v, w)) return false;
+
+    // The surface faces at v: w must lie in each one's plane, the renamed
+    // face must keep its side, and off the feature edges v's surface
+    // neighbourhood must carry one marker.
+    struct Renamed {
+        FaceKey from, to;
+        bool marked;
+        int32_t marker;
+    };
+    std::vector<Renamed> renamed;
+    std::vector<std::pair<FaceKey, bool>> dropped;  // faces on (v, w)
+    if (v_on_surface) {
+        bool have_marker = false;
+        int32_t common_marker = 0;
+        for (int32_t t : star) {
+            const Tet& q = mesh.tet(t);
+            for (int i = 0; i < 4; ++i) {
+                if (q[i] == v) continue;
+                const int32_t a = q[kFaceVertex[i][0]], b = q[kFaceVertex[i][1]], c = q[kFaceVertex[i][2]];
+                const FaceKey f = FaceKey::of(a, b, c);
+                if (!mesh.is_surface_face(f)) continue;
+                if (holds(mesh.tet(t), w) && (a == w || b == w || c == w)) {
+                    dropped.push_back({f, mesh.has_marker(f)});
+                    continue;
+                }
+                const Vec3 n = triangle_normal(mesh.point(a), mesh.point(b), mesh.point(c));
+                if (!in_plane(n, mesh.point(v), mesh.point(w), length)) return false;
+                const Vec3 pa = a == v ? mesh.point(w) : mesh.point(a), pb = b == v ? mesh.point(w) : mesh.point(b),
+                           pc = c == v ? mesh.point(w) : mesh.point(c);
+                if (!(triangle_normal(pa, pb, pc).dot(n) > 0.0)) return false;
+                const int32_t marker = mesh.marker(f);
+                const bool on_feature = mesh.is_feature_edge(v, a == v ? b : a) || mesh.is_feature_edge(v, c == v ? b : c);
+                if (!on_feature) {
+                    if (have_marker && marker != common_marker) return false;
+                    have_marker = true;
+                    common_marker = marker;
+                }
+                renamed.push_back({f, FaceKey::of(a == v ? w : a, b == v ? w : b, c == v ? w : c), mesh.has_marker(f), marker});
+            }
+        }
+        // A surface face seen from two tets (an interface) is listed twice.
+        std::sort(renamed.begin(), renamed.end(), [](const Renamed& x, const Renamed& y) { return x.from < y.from; });
+        renamed.erase(std::unique(renamed.begin(), renamed.end(), [](const Renamed& x, const Renamed& y) { return x.from == y.from; }),
+                      renamed.end());
+    }
+
+    const TetLimits limits = limits_for(mesh, star, rules, must_exceed);
+    struct Moved {
+        Tet q;
+        int32_t region, origin;
+    };
+    std::vector<Moved> moved;
+    for (int32_t t : star) {
+        Tet q = mesh.tet(t);
+        if (holds(q, w)) continue;
+        std::replace(q.begin(), q.end(), v, w);
+        const TetPoints p{mesh.point(q[0]), mesh.point(q[1]), mesh.point(q[2]), mesh.point(q[3])};
+        if (!acceptable_tet(p, limits) || has_tet(mesh, q)) return false;
+        moved.push_back({q, mesh.region(t), mesh.origin(t)});
+    }
+
+    // Apply.
+    for (int32_t t : star) mesh.remove_tet(t);
+    for (const Moved& m : moved) mesh.add_tet(m.q, m.region, m.origin);
+    for (const auto& [f, marked] : dropped)
+        if (marked) mesh.erase_marker(f);
+    for (const Renamed& r : renamed) {
+        if (!r.marked) continue;
+        mesh.erase_marker(r.from);
+        mesh.set_marker(r.to, r.marker);
+    }
+    std::vector<int32_t> around;
+    mesh.neighbors(w, around);  // v's former neighbours are now w's
+    for (int32_t x : around) {
+        if (!mesh.is_feature_edge(v, x)) continue;
+        const bool caller = mesh.erase_feature_edge(v, x);
+        mesh.add_feature_edge(w, x, caller);
+    }
+    if (mesh.is_feature_edge(v, w)) mesh.erase_feature_edge(v, w);
+    return true;
+}
+
+int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& rules, double must_exceed) {
+    const auto rank = [&mesh](int32_t v) {
+        switch (mesh.vertex_class(v)) {
+            case VertexClass::Interior: return 0;
+            case VertexClass::Surface: return 1;
+            case VertexClass::FeatureLine: return 2;
+            default: return 3;
+        }
+    };
+    const int ra = rank(a), rb = rank(b);
+    if (ra == 3 && rb == 3) return -1;  // rule (a): never between two corners
+    if (ra != rb) {
+        const int32_t keep = ra > rb ? a : b, gone = ra > rb ? b : a;
+        return collapse_half_edge(mesh, gone, keep, rules, must_exceed) ? keep : -1;
+    }
+    // Equal classes: both go to the midpoint (rule d).  Move b there, check
+    // its own tets and surface faces, then collapse a into it.
+    const size_t mark = mesh.checkpoint();
+    const Vec3 old_b = mesh.point(b);
+    const Vec3 mid = 0.5 * (mesh.point(a) + old_b);
+    const double length = (mesh.point(a) - old_b).norm();
+    const std::vector<int32_t> star = mesh.tets_of(b);
+    const TetLimits limits = limits_for(mesh, star, rules, must_exceed);
+    mesh.move_vertex(b, mid);
+    bool ok = true;
+    for (int32_t t : star) {
+        const Tet& q = mesh.tet(t);
+        if (holds(q, a)) continue;
+        ok = ok && acceptable_tet(mesh.tet_points(t), limits);
+        for (int i = 0; ok && i < 4 && rank(b) > 0; ++i) {
+            if (q[i] == b) continue;
+            const FaceKey f = FaceKey::of(q[kFaceVertex[i][0]], q[kFaceVertex[i][1]], q[kFaceVertex[i][2]]);
+            if (!mesh.is_surface_face(f)) continue;
+            const Vec3 n = triangle_normal(f.v[0] == b ? old_b : mesh.point(f.v[0]), f.v[1] == b ? old_b : mesh.point(f.v[1]),
+                                           f.v[2] == b ? old_b : mesh.point(f.v[2]));
+            ok = in_plane(n, old_b, mid, length);
+        }
+    }
+    if (ok && rank(b) > 0) ok = rules.surface_may_change && feature_lines_allow(mesh, b, a, length);
+    if (ok && collapse_half_edge(mesh, a, b, rules, must_exceed)) return b;
+    mesh.rollback(mark);
+    return -1;
+}
+
+}  // namespace bodt

@@ -1,0 +1,302 @@
+#include "topology/editable_mesh.hpp"
+
+#include <algorithm>
+#include <climits>
+
+namespace bodt {
+
+namespace {
+
+constexpr int32_t kNoMarker = INT32_MIN;
+
+// Parity of the permutation taking q to (a, b, c, d): true when even.
+bool even_order(const Tet& q, int32_t a, int32_t b, int32_t c, int32_t d) {
+    const int32_t want[4] = {a, b, c, d};
+    int pos[4];
+    for (int i = 0; i < 4; ++i) pos[i] = static_cast<int>(std::find(q.begin(), q.end(), want[i]) - q.begin());
+    int inversions = 0;
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) inversions += pos[i] > pos[j];
+    return inversions % 2 == 0;
+}
+
+}  // namespace
+
+EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
+    : points_(mesh.points),
+      cls_(classes.cls),
+      parents_(mesh.points.size()),
+      tets_(mesh.tets),
+      removed_(mesh.tets.size()),
+      regions_(mesh.regions),
+      vtets_(mesh.points.size()),
+      markers_(mesh.face_markers),
+      caller_features_(mesh.feature_edges),
+      features_(classes.feature_edges),
+      input_vertices_(mesh.num_input_vertices()) {
+    fixed_.resize(points_.size());
+    for (size_t v = 0; v < points_.size(); ++v) fixed_[v] = mesh.vflags[v] & kFixed;
+    features_.insert(caller_features_.begin(), caller_features_.end());
+    for (int32_t v = input_vertices_; v < num_vertices(); ++v) parents_[v] = mesh.new_parents[v - input_vertices_];
+    if (mesh.tet_origin.empty()) {
+        origin_.resize(tets_.size());
+        for (size_t t = 0; t < tets_.size(); ++t) origin_[t] = static_cast<int32_t>(t);
+    } else {
+        origin_ = mesh.tet_origin;
+    }
+    for (int32_t t = 0; t < tet_capacity(); ++t)
+        for (int32_t v : tets_[t]) vtets_[v].push_back(t);
+}
+
+void EditableMesh::write_to(TetMesh& mesh) const {
+    // Vertex numbering: input vertices stay; made ones that are still used
+    // follow in the order they were made.
+    std::vector<int32_t> renumber(points_.size(), -1);
+    int32_t next = input_vertices_;
+    for (int32_t v = 0; v < num_vertices(); ++v)
+        renumber[v] = v < input_vertices_ ? v : (vtets_[v].empty() ? -1 : next++);
+    mesh.points.assign(points_.begin(), points_.begin() + input_vertices_);
+    mesh.new_parents.clear();
+    std::vector<uint8_t> flags(static_cast<size_t>(next), 0);
+    for (int32_t v = 0; v < num_vertices(); ++v) {
+        if (renumber[v] < 0) continue;
+        flags[renumber[v]] = fixed_[v] ? kFixed : 0;
+        if (v < input_vertices_) continue;
+        mesh.points.push_back(points_[v]);
+        mesh.new_parents.push_back(parents_[v]);
+    }
+    mesh.vflags = std::move(flags);
+    mesh.tets.clear();
+    mesh.regions.clear();
+    mesh.tet_origin.clear();
+    for (int32_t t = 0; t < tet_capacity(); ++t) {
+        if (!alive(t)) continue;
+        const Tet& q = tets_[t];
+        mesh.tets.push_back({renumber[q[0]], renumber[q[1]], renumber[q[2]], renumber[q[3]]});
+        mesh.regions.push_back(regions_[t]);
+        mesh.tet_origin.push_back(origin_[t]);
+    }
+    mesh.face_markers.clear();
+    for (const auto& [f, m] : markers_)
+        mesh.face_markers.emplace(FaceKey::of(renumber[f.v[0]], renumber[f.v[1]], renumber[f.v[2]]), m);
+    mesh.feature_edges.clear();
+    for (EdgeKey k : caller_features_)
+        mesh.feature_edges.insert(edge_key(renumber[edge_first(k)], renumber[edge_second(k)]));
+    mesh.reversed.clear();
+}
+
+TetPoints EditableMesh::tet_points(int32_t t) const {
+    const Tet& q = tets_[t];
+    return {points_[q[0]], points_[q[1]], points_[q[2]], points_[q[3]]};
+}
+
+int EditableMesh::face_tets(const FaceKey& f, int32_t out[2]) const {
+    int n = 0;
+    for (int32_t t : vtets_[f.v[0]]) {
+        const Tet& q = tets_[t];
+        const auto has = [&q](int32_t v) { return std::find(q.begin(), q.end(), v) != q.end(); };
+        if (has(f.v[1]) && has(f.v[2]) && n < 2) out[n++] = t;
+    }
+    return n;
+}
+
+bool EditableMesh::is_surface_face(const FaceKey& f) const {
+    int32_t t[2];
+    const int n = face_tets(f, t);
+    if (n == 1) return true;
+    if (n == 2 && regions_[t[0]] != regions_[t[1]]) return true;
+    return n == 2 && has_marker(f);
+}
+
+int32_t EditableMesh::marker(const FaceKey& f) const {
+    const auto it = markers_.find(f);
+    return it == markers_.end() ? 0 : it->second;
+}
+
+bool EditableMesh::is_surface_edge(int32_t a, int32_t b) const {
+    for (int32_t t : vtets_[a]) {
+        const Tet& q = tets_[t];
+        if (std::find(q.begin(), q.end(), b) == q.end()) continue;
+        for (int32_t c : q)
+            if (c != a && c != b && is_surface_face(FaceKey::of(a, b, c))) return true;
+    }
+    return false;
+}
+
+bool EditableMesh::edge_ring(int32_t a, int32_t b, EdgeRing& out) const {
+    out.ring.clear();
+    out.tets.clear();
+    out.closed = false;
+    // Each tet (a, b, c, d) in positive order links c -> d.
+    std::vector<std::array<int32_t, 3>> links;  // c, d, tet
+    for (int32_t t : vtets_[a]) {
+        const Tet& q = tets_[t];
+        if (std::find(q.begin(), q.end(), b) == q.end()) continue;
+        int32_t cd[2], n = 0;
+        for (int32_t v : q)
+            if (v != a && v != b) cd[n++] = v;
+        if (!even_order(q, a, b, cd[0], cd[1])) std::swap(cd[0], cd[1]);
+        links.push_back({cd[0], cd[1], t});
+    }
+    if (links.empty()) return false;
+    // Start where no link ends (an open fan), else anywhere.
+    size_t start = 0;
+    for (size_t i = 0; i < links.size(); ++i) {
+        const bool has_pred = std::any_of(links.begin(), links.end(), [&](const auto& l) { return l[1] == links[i][0]; });
+        if (!has_pred) {
+            start = i;
+            break;
+        }
+    }
+    std::vector<char> used(links.size(), 0);
+    size_t cur = start;
+    out.ring.push_back(links[cur][0]);
+    for (size_t k = 0; k < links.size(); ++k) {
+        used[cur] = 1;
+        out.tets.push_back(links[cur][2]);
+        const int32_t d = links[cur][1];
+        size_t nxt = links.size();
+        for (size_t i = 0; i < links.size(); ++i)
+            if (!used[i] && links[i][0] == d) {
+                if (nxt != links.size()) return false;  // two tets continue the fan
+                nxt = i;
+            }
+        if (nxt == links.size()) {
+            if (k + 1 != links.size()) return false;  // the fan ended early
+            out.closed = d == out.ring.front();
+            if (!out.closed) out.ring.push_back(d);
+            break;
+        }
+        out.ring.push_back(d);
+        cur = nxt;
+    }
+    return true;
+}
+
+void EditableMesh::neighbors(int32_t v, std::vector<int32_t>& out) const {
+    out.clear();
+    for (int32_t t : vtets_[v])
+        for (int32_t w : tets_[t])
+            if (w != v) out.push_back(w);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+// ------------------------------------------------------------------ changes
+
+void EditableMesh::attach(int32_t t) {
+    for (int32_t v : tets_[t]) vtets_[v].push_back(t);
+}
+
+void EditableMesh::detach(int32_t t) {
+    for (int32_t v : tets_[t]) {
+        auto& list = vtets_[v];
+        list.erase(std::find(list.begin(), list.end(), t));
+    }
+}
+
+int32_t EditableMesh::add_vertex(const Vec3& p, VertexClass cls, Parents parents) {
+    const int32_t v = num_vertices();
+    points_.push_back(p);
+    cls_.push_back(cls);
+    fixed_.push_back(0);
+    parents_.push_back(std::move(parents));
+    vtets_.emplace_back();
+    journal_.push_back({Change::AddVertex, v, {}, 0, Vec3::Zero(), 0, false});
+    return v;
+}
+
+void EditableMesh::move_vertex(int32_t v, const Vec3& p) {
+    journal_.push_back({Change::MoveVertex, v, {}, 0, points_[v], 0, false});
+    points_[v] = p;
+}
+
+int32_t EditableMesh::add_tet(const Tet& q, int32_t region, int32_t origin) {
+    const int32_t t = tet_capacity();
+    tets_.push_back(q);
+    removed_.push_back({-1, -1, -1, -1});
+    regions_.push_back(region);
+    origin_.push_back(origin);
+    attach(t);
+    journal_.push_back({Change::AddTet, t, {}, 0, Vec3::Zero(), 0, false});
+    return t;
+}
+
+void EditableMesh::remove_tet(int32_t t) {
+    detach(t);
+    removed_[t] = tets_[t];
+    tets_[t] = {-1, -1, -1, -1};
+    journal_.push_back({Change::RemoveTet, t, {}, 0, Vec3::Zero(), 0, false});
+}
+
+void EditableMesh::set_marker(const FaceKey& f, int32_t m) {
+    const auto it = markers_.find(f);
+    journal_.push_back({Change::SetMarker, 0, f, it == markers_.end() ? kNoMarker : it->second, Vec3::Zero(), 0, false});
+    markers_[f] = m;
+}
+
+void EditableMesh::erase_marker(const FaceKey& f) {
+    const auto it = markers_.find(f);
+    if (it == markers_.end()) return;
+    journal_.push_back({Change::EraseMarker, 0, f, it->second, Vec3::Zero(), 0, false});
+    markers_.erase(it);
+}
+
+void EditableMesh::add_feature_edge(int32_t a, int32_t b, bool caller) {
+    const EdgeKey k = edge_key(a, b);
+    if (features_.count(k)) return;
+    features_.insert(k);
+    if (caller) caller_features_.insert(k);
+    journal_.push_back({Change::AddFeature, 0, {}, 0, Vec3::Zero(), k, caller});
+}
+
+bool EditableMesh::erase_feature_edge(int32_t a, int32_t b) {
+    const EdgeKey k = edge_key(a, b);
+    if (!features_.erase(k)) return false;
+    const bool caller = caller_features_.erase(k) != 0;
+    journal_.push_back({Change::EraseFeature, 0, {}, 0, Vec3::Zero(), k, caller});
+    return caller;
+}
+
+void EditableMesh::rollback(size_t mark) {
+    while (journal_.size() > mark) {
+        const Entry e = journal_.back();
+        journal_.pop_back();
+        switch (e.kind) {
+            case Change::AddVertex:
+                points_.pop_back();
+                cls_.pop_back();
+                fixed_.pop_back();
+                parents_.pop_back();
+                vtets_.pop_back();
+                break;
+            case Change::MoveVertex: points_[e.index] = e.old_point; break;
+            case Change::AddTet:
+                detach(e.index);
+                tets_.pop_back();
+                removed_.pop_back();
+                regions_.pop_back();
+                origin_.pop_back();
+                break;
+            case Change::RemoveTet:
+                tets_[e.index] = removed_[e.index];
+                attach(e.index);
+                break;
+            case Change::SetMarker:
+                if (e.old_marker == kNoMarker) markers_.erase(e.face);
+                else markers_[e.face] = e.old_marker;
+                break;
+            case Change::EraseMarker: markers_[e.face] = e.old_marker; break;
+            case Change::AddFeature:
+                features_.erase(e.edge);
+                caller_features_.erase(e.edge);
+                break;
+            case Change::EraseFeature:
+                features_.insert(e.edge);
+                if (e.caller) caller_features_.insert(e.edge);
+                break;
+        }
+    }
+}
+
+}  // namespace bodt

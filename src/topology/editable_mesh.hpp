@@ -1,0 +1,114 @@
+// A tet mesh whose connectivity can change: the working copy the topology
+// operations edit during a step.  TetMesh keeps compact CSR arrays that are
+// rebuilt, not edited; here every vertex keeps a growable list of its tets,
+// removed tets leave a hole (compacted by write_to), and every change goes
+// through a few primitives that log it, so a tentative operation can be
+// rolled back exactly (checkpoint / rollback).
+#pragma once
+
+#include "features/vertex_classes.hpp"
+#include "mesh/tet_mesh.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace bodt {
+
+// The tets around an edge (a, b), ordered so that (a, b, ring[i], ring[i+1])
+// is each tet's positive orientation.  A closed ring has as many vertices as
+// tets; an open one (an edge on the boundary) has one more.
+struct EdgeRing {
+    std::vector<int32_t> ring;
+    std::vector<int32_t> tets;
+    bool closed = false;
+};
+
+class EditableMesh {
+public:
+    // Copies the mesh; `classes` gives each vertex's class (new vertices
+    // get theirs from the operation that makes them).
+    EditableMesh(const TetMesh& mesh, const VertexClasses& classes);
+
+    // Writes the result back: tets compacted in order, vertices of the
+    // input kept at their index (unused if an operation removed them),
+    // vertices made since the input appended, those no tet uses dropped.
+    // The caller rebuilds the mesh's topology afterwards.
+    void write_to(TetMesh& mesh) const;
+
+    // ---- queries
+    int32_t num_vertices() const { return static_cast<int32_t>(points_.size()); }
+    int32_t tet_capacity() const { return static_cast<int32_t>(tets_.size()); }
+    bool alive(int32_t t) const { return tets_[t][0] >= 0; }
+    const Tet& tet(int32_t t) const { return tets_[t]; }
+    int32_t region(int32_t t) const { return regions_[t]; }
+    int32_t origin(int32_t t) const { return origin_[t]; }
+    const Vec3& point(int32_t v) const { return points_[v]; }
+    const std::vector<int32_t>& tets_of(int32_t v) const { return vtets_[v]; }
+    VertexClass vertex_class(int32_t v) const { return cls_[v]; }
+    bool is_feature_edge(int32_t a, int32_t b) const { return features_.count(edge_key(a, b)) != 0; }
+    const Parents& parents(int32_t v) const { return parents_[v]; }
+    TetPoints tet_points(int32_t t) const;
+
+    // Tets holding the face; returns how many (0, 1 or 2).
+    int face_tets(const FaceKey& f, int32_t out[2]) const;
+    // On the boundary, between regions, or marked by the caller.
+    bool is_surface_face(const FaceKey& f) const;
+    // The face's marker; 0 when it has none.
+    int32_t marker(const FaceKey& f) const;
+    bool has_marker(const FaceKey& f) const { return markers_.count(f) != 0; }
+    // The edge lies on a surface face.
+    bool is_surface_edge(int32_t a, int32_t b) const;
+    // False when the tets around the edge do not form one fan (a
+    // non-manifold edge) or there are none.
+    bool edge_ring(int32_t a, int32_t b, EdgeRing& out) const;
+    // The vertices sharing a tet with v.
+    void neighbors(int32_t v, std::vector<int32_t>& out) const;
+
+    // ---- changes (all logged)
+    int32_t add_vertex(const Vec3& p, VertexClass cls, Parents parents);
+    void move_vertex(int32_t v, const Vec3& p);
+    int32_t add_tet(const Tet& t, int32_t region, int32_t origin);
+    void remove_tet(int32_t t);
+    void set_marker(const FaceKey& f, int32_t marker);
+    void erase_marker(const FaceKey& f);
+    // Feature edges: `caller` marks one the caller gave (kept in the output);
+    // erase returns whether the erased edge was the caller's.
+    void add_feature_edge(int32_t a, int32_t b, bool caller);
+    bool erase_feature_edge(int32_t a, int32_t b);
+
+    // A mark to roll back to; rollback undoes every change made since.
+    size_t checkpoint() const { return journal_.size(); }
+    void rollback(size_t mark);
+    // Forgets the log: no rollback past this point.
+    void commit() { journal_.clear(); }
+
+private:
+    enum class Change : uint8_t { AddVertex, MoveVertex, AddTet, RemoveTet, SetMarker, EraseMarker, AddFeature, EraseFeature };
+    struct Entry {
+        Change kind;
+        int32_t index;      // vertex or tet
+        FaceKey face;       // markers
+        int32_t old_marker; // SetMarker: the previous one, or INT32_MIN when there was none
+        Vec3 old_point;     // MoveVertex
+        EdgeKey edge;       // feature edges
+        bool caller;        // feature edges: the caller's
+    };
+    void detach(int32_t t);
+    void attach(int32_t t);
+
+    std::vector<Vec3> points_;
+    std::vector<VertexClass> cls_;
+    std::vector<uint8_t> fixed_;
+    std::vector<Parents> parents_;
+    std::vector<Tet> tets_;  // removed: {-1, -1, -1, -1}
+    std::vector<Tet> removed_;  // the vertices of a removed tet, for rollback
+    std::vector<int32_t> regions_, origin_;
+    std::vector<std::vector<int32_t>> vtets_;
+    std::unordered_map<FaceKey, int32_t, FaceKeyHash> markers_;
+    EdgeSet caller_features_;  // the caller's feature edges, kept in the output
+    EdgeSet features_;         // every feature edge the classes came from, plus the caller's
+    std::vector<Entry> journal_;
+    int32_t input_vertices_;
+};
+
+}  // namespace bodt

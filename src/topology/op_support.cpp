@@ -1,0 +1,85 @@
+#include "topology/op_support.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace bodt {
+
+namespace {
+
+// Relative tolerance of "in the plane": far below any feature a mesh
+// resolves, far above the round-off of coordinates read from a file.
+constexpr double kFlatTolerance = 1e-9;
+
+}  // namespace
+
+TetLimits limits_for(const EditableMesh& mesh, const std::vector<int32_t>& replaced, const TopologyRules& rules,
+                     double must_exceed) {
+    TetLimits limits{std::max(must_exceed, 0.0), rules.min_stretch, rules.never_worse, {-1.0, 1.0}};
+    for (int32_t t : replaced) limits.stretch_floor = std::min(limits.stretch_floor, stretch(mesh.tet_points(t)));
+    if (rules.never_worse) limits.range = cosine_range(mesh, replaced);
+    return limits;
+}
+
+bool acceptable_tet(const TetPoints& p, const TetLimits& limits) {
+    if (!(min_dihedral_sine(p) > limits.must_exceed)) return false;
+    const TetShape shape = tet_shape(p);
+    return shape.stretch >= limits.stretch_floor && (!limits.keep_range || within(shape.cosines, limits.range));
+}
+
+CosineRange cosine_range(const EditableMesh& mesh, const std::vector<int32_t>& tets) {
+    CosineRange r{-1.0, 1.0};
+    for (int32_t t : tets) {
+        const CosineRange c = tet_shape(mesh.tet_points(t)).cosines;
+        r.of_min = std::max(r.of_min, c.of_min);
+        r.of_max = std::min(r.of_max, c.of_max);
+    }
+    return r;
+}
+
+int32_t origin_of(const EditableMesh& mesh, const std::vector<int32_t>& replaced, const Tet& q) {
+    const Vec3 c = 0.25 * (mesh.point(q[0]) + mesh.point(q[1]) + mesh.point(q[2]) + mesh.point(q[3]));
+    int32_t best = replaced.front();
+    double best_depth = -std::numeric_limits<double>::infinity();
+    for (int32_t t : replaced) {
+        const TetPoints p = mesh.tet_points(t);
+        const double whole = signed_volume(p[0], p[1], p[2], p[3]);
+        double depth = std::numeric_limits<double>::infinity();  // smallest barycentric coordinate of c
+        for (int i = 0; i < 4; ++i) {
+            TetPoints s = p;
+            s[i] = c;
+            depth = std::min(depth, signed_volume(s[0], s[1], s[2], s[3]) / whole);
+        }
+        if (depth > best_depth) {
+            best_depth = depth;
+            best = t;
+        }
+    }
+    return mesh.origin(best);
+}
+
+Parents blend_parents(const EditableMesh& mesh, std::initializer_list<int32_t> vs, std::initializer_list<double> ws) {
+    Parents out;
+    auto w = ws.begin();
+    for (int32_t v : vs) {
+        const double weight = *w++;
+        if (mesh.parents(v).empty()) {
+            out.push_back({v, weight});  // an input vertex
+        } else {
+            for (const Parent& p : mesh.parents(v)) out.push_back({p.vertex, weight * p.weight});
+        }
+    }
+    std::sort(out.begin(), out.end(), [](const Parent& a, const Parent& b) { return a.vertex < b.vertex; });
+    Parents merged;
+    for (const Parent& p : out) {
+        if (!merged.empty() && merged.back().vertex == p.vertex) merged.back().weight += p.weight;
+        else merged.push_back(p);
+    }
+    return merged;
+}
+
+bool in_plane(const Vec3& n, const Vec3& p, const Vec3& x, double length) {
+    return std::abs(n.dot(x - p)) <= kFlatTolerance * n.norm() * length;
+}
+
+}  // namespace bodt

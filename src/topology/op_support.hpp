@@ -1,0 +1,49 @@
+// Helpers the topology operations share: the acceptance test for a new tet,
+// the input tet a new tet inherits, the parents of a new vertex, and the
+// flatness tests that keep the surface's shape.
+#pragma once
+
+#include "topology/editable_mesh.hpp"
+#include "topology/operations.hpp"
+
+#include <vector>
+
+namespace bodt {
+
+// What a tet replacing `replaced` must reach: positive orientation, a worst
+// dihedral sine above `must_exceed`, stretch at least min(rules.min_stretch,
+// the worst replaced stretch) and, with rules.never_worse, no dihedral angle
+// outside the replaced tets' range.
+struct TetLimits {
+    double must_exceed;
+    double stretch_floor;
+    bool keep_range;
+    CosineRange range;
+};
+TetLimits limits_for(const EditableMesh& mesh, const std::vector<int32_t>& replaced, const TopologyRules& rules,
+                     double must_exceed);
+bool acceptable_tet(const TetPoints& p, const TetLimits& limits);
+
+// The extreme dihedral angles (as cosines) over `tets`.
+CosineRange cosine_range(const EditableMesh& mesh, const std::vector<int32_t>& tets);
+// `inner` lies within `outer`: its smallest angle no smaller, its largest no larger.
+inline bool within(const CosineRange& inner, const CosineRange& outer) {
+    return inner.of_min <= outer.of_min && inner.of_max >= outer.of_max;
+}
+
+// The input tet a new tet came from: the origin of the replaced tet that
+// holds its centroid most deeply.
+int32_t origin_of(const EditableMesh& mesh, const std::vector<int32_t>& replaced, const Tet& q);
+
+// Parents of a point interpolated from mesh vertices vs[i] with weights
+// ws[i], expressed in input vertices.
+Parents blend_parents(const EditableMesh& mesh, std::initializer_list<int32_t> vs, std::initializer_list<double> ws);
+
+// x lies in the plane through p with normal n (not unit), to round-off of
+// the mesh's scale `length`.
+bool in_plane(const Vec3& n, const Vec3& p, const Vec3& x, double length);
+
+// The outward normal (not unit) of face (a, b, c).
+inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a).cross(c - a); }
+
+}  // namespace bodt

@@ -1,0 +1,63 @@
+// The local connectivity changes (papers 000 sec. 2.3, 001 sec. 4, 002
+// sec. 3.5).  Each one checks everything first and either changes the mesh
+// into a valid one or leaves it untouched and returns false/-1:
+//  - every tet it makes is positively oriented (certified) and its worst
+//    dihedral sine exceeds `must_exceed`;
+//  - region ids, face markers and feature edges follow the change;
+//  - boundary and interface faces change only when the rules allow it and
+//    the surface keeps its shape: a face is replaced only by faces in its
+//    own plane with its own marker, and a split puts its vertex on the
+//    split edge or face.
+#pragma once
+
+#include "topology/editable_mesh.hpp"
+
+#include <cstdint>
+
+namespace bodt {
+
+struct TopologyRules {
+    bool surface_may_change = true;  // false: no boundary/interface face is split, flipped or collapsed
+    double min_stretch = 1e-3;       // no new tet below min(this, the worst stretch it replaces)
+    bool never_worse = false;        // no new tet with an angle outside the range of the tets it replaces
+};
+
+// The largest number of tets around an edge that edge removal considers.
+inline constexpr int kMaxEdgeRing = 7;
+
+// Edge removal: the k tets around edge (a, b) become 2k - 4 (closed ring)
+// or 2k - 2 (an edge on a flat part of the surface), the ring's polygon
+// triangulated to maximise the worst new tet (dynamic programming over the
+// polygon, Klincsek's O(k^3)).  k = 3 is the 3-2 flip, k = 4 the 4-4 flip,
+// and a surface edge with k = 2 the 2-2 flip.
+bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& rules, double must_exceed);
+
+// The 2-3 flip: the two tets on face (a, b, c) become three around the edge
+// joining their apexes.
+bool flip_23(EditableMesh& mesh, const FaceKey& face, const TopologyRules& rules, double must_exceed);
+
+// Edge split: a new vertex at p, every tet around (a, b) split in two.  On a
+// surface edge p is first projected onto the segment.  Returns the new
+// vertex or -1.
+int32_t split_edge(EditableMesh& mesh, int32_t a, int32_t b, Vec3 p, const TopologyRules& rules, double must_exceed);
+
+// Face split (1-3 in each tet on the face): a new vertex at p.  On a surface
+// face p is first projected onto its plane.  Returns the new vertex or -1.
+int32_t split_face(EditableMesh& mesh, const FaceKey& face, Vec3 p, const TopologyRules& rules, double must_exceed);
+
+// Half-edge collapse: v disappears into w.  Corners and fixed vertices are
+// never removed; a feature-line vertex goes only along its feature edge, a
+// surface vertex only along a surface edge, and only where its surface
+// neighbourhood is flat (one plane and one marker apart from feature edges).
+bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const TopologyRules& rules, double must_exceed);
+
+// Edge collapse with the position rules of paper 002 sec. 3.5.1: never
+// between two corners; to the endpoint of higher class (corner > feature
+// line > surface > interior) if the classes differ; to the midpoint if they
+// are equal.  Returns the surviving vertex or -1.
+int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& rules, double must_exceed);
+
+// The worst dihedral sine of tets (min_dihedral_sine).
+double worst_sine(const EditableMesh& mesh, const std::vector<int32_t>& tets);
+
+}  // namespace bodt

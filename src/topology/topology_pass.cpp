@@ -1,0 +1,239 @@
+#include "topology/topology_pass.hpp"
+
+#include "topology/bad_tets.hpp"
+#include "topology/op_support.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bodt {
+
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+// Flips look at tets with an angle outside [30, 150] degrees.
+const double kFlipBelowSine = std::sin(30.0 * kDegree);
+// A change must raise the worst sine by more than round-off.
+constexpr double kGain = 1e-12;
+constexpr int kRelocationRounds = 3;
+
+std::vector<int32_t> tets_around_edge(const EditableMesh& mesh, int32_t a, int32_t b) {
+    std::vector<int32_t> out;
+    for (int32_t t : mesh.tets_of(a)) {
+        const Tet& q = mesh.tet(t);
+        if (std::find(q.begin(), q.end(), b) != q.end()) out.push_back(t);
+    }
+    return out;
+}
+
+// The tets touching any of `vs`, each once.
+std::vector<int32_t> region_of(const EditableMesh& mesh, const std::vector<int32_t>& vs) {
+    std::vector<int32_t> out;
+    for (int32_t v : vs) out.insert(out.end(), mesh.tets_of(v).begin(), mesh.tets_of(v).end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+Vec3 circumcenter(const TetPoints& p) {
+    const Vec3 u = p[1] - p[0], v = p[2] - p[0], w = p[3] - p[0];
+    const double den = 2.0 * u.dot(v.cross(w));
+    return p[0] + (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / den;
+}
+
+// One guarded ODT move of an interior vertex (paper 000 eq. 3: the
+// volume-weighted mean of the circumcentres of its star), halved until no
+// tet of the star ends worse than the star's worst before.
+void relocate(EditableMesh& mesh, int32_t v, const TopologyRules& rules) {
+    if (mesh.vertex_class(v) != VertexClass::Interior) return;
+    const std::vector<int32_t> star = mesh.tets_of(v);
+    Vec3 sum = Vec3::Zero();
+    double volume = 0.0;
+    for (int32_t t : star) {
+        const TetPoints p = mesh.tet_points(t);
+        const double vol = signed_volume(p[0], p[1], p[2], p[3]);
+        sum += vol * circumcenter(p);
+        volume += vol;
+    }
+    if (!(volume > 0.0)) return;
+    const Vec3 start = mesh.point(v);
+    const Vec3 target = sum / volume;
+    if (!target.allFinite()) return;
+    const TetLimits limits = limits_for(mesh, star, rules, worst_sine(mesh, star));
+    for (double f = 1.0; f > 0.05; f *= 0.5) {
+        mesh.move_vertex(v, start + f * (target - start));
+        bool ok = true;
+        for (int32_t t : star) ok = ok && acceptable_tet(mesh.tet_points(t), limits);
+        if (ok) return;
+    }
+    mesh.move_vertex(v, start);
+}
+
+// Tries one edge removal or 2-3 flip among the edges and faces of t that
+// raises the worst sine of the tets involved.
+bool flip_around(EditableMesh& mesh, int32_t t, const TopologyRules& rules) {
+    const Tet q = mesh.tet(t);
+    for (const auto& e : kEdgeVertex) {
+        const std::vector<int32_t> ring = tets_around_edge(mesh, q[e[0]], q[e[1]]);
+        if (static_cast<int>(ring.size()) > kMaxEdgeRing) continue;
+        if (remove_edge(mesh, q[e[0]], q[e[1]], rules, worst_sine(mesh, ring) + kGain)) return true;
+    }
+    for (const auto& f : kFaceVertex) {
+        const FaceKey face = FaceKey::of(q[f[0]], q[f[1]], q[f[2]]);
+        int32_t pair[2];
+        if (mesh.face_tets(face, pair) != 2) continue;
+        if (flip_23(mesh, face, rules, worst_sine(mesh, {pair[0], pair[1]}) + kGain)) return true;
+    }
+    return false;
+}
+
+// One sweep over the tets; the tets a flip makes are appended, so the
+// sweep reaches them too and goes on until no bad tet it meets can flip.
+// Every flip raises a local minimum, so this ends; the cap only bounds the
+// time on a pathological mesh.
+int32_t flip_pass(EditableMesh& mesh, const TopologyRules& rules) {
+    int32_t flips = 0;
+    const int32_t cap = 2 * mesh.tet_capacity();
+    for (int32_t t = 0; t < mesh.tet_capacity() && flips < cap; ++t) {
+        if (!mesh.alive(t) || min_dihedral_sine(mesh.tet_points(t)) >= kFlipBelowSine) continue;
+        flips += flip_around(mesh, t, rules);
+    }
+    return flips;
+}
+
+// Inserts the vertices that break bad tet t (spade, cap, sliver); returns
+// the new vertices, none if an operation was refused.
+std::vector<int32_t> insert_for(EditableMesh& mesh, int32_t t, const BadTet& bad, const TopologyRules& rules) {
+    const Tet q = mesh.tet(t);
+    std::vector<int32_t> made;
+    const auto keep = [&made](int32_t v) {
+        if (v >= 0) made.push_back(v);
+        return v >= 0;
+    };
+    switch (bad.kind) {
+        case BadTetKind::Spade: keep(split_edge(mesh, q[bad.edge[0]], q[bad.edge[1]], bad.point, rules, 0.0)); break;
+        case BadTetKind::Cap: {
+            const auto& f = kFaceVertex[bad.apex];
+            keep(split_face(mesh, FaceKey::of(q[f[0]], q[f[1]], q[f[2]]), bad.point, rules, 0.0));
+            break;
+        }
+        case BadTetKind::Sliver:
+            if (keep(split_edge(mesh, q[bad.edge[0]], q[bad.edge[1]], bad.point, rules, 0.0)) &&
+                !keep(split_edge(mesh, q[bad.edge2[0]], q[bad.edge2[1]], bad.point2, rules, 0.0)))
+                made.clear();
+            break;
+        default: break;
+    }
+    return made;
+}
+
+// Worst tets first, so that a fix is not spent on a tet a neighbour's fix
+// would have removed anyway.
+std::vector<int32_t> bad_tets_by_quality(const EditableMesh& mesh, double bad_sine) {
+    std::vector<std::pair<double, int32_t>> bad;
+    for (int32_t t = 0; t < mesh.tet_capacity(); ++t) {
+        if (!mesh.alive(t)) continue;
+        const double s = min_dihedral_sine(mesh.tet_points(t));
+        if (s < bad_sine) bad.push_back({s, t});
+    }
+    std::sort(bad.begin(), bad.end());
+    std::vector<int32_t> out;
+    for (const auto& b : bad) out.push_back(b.second);
+    return out;
+}
+
+// Applies `change` to bad tet t, relocates the vertices involved, and keeps
+// the result if the worst sine of the tets that changed went up (and, with
+// rules.never_worse, their angles stayed within the range the replaced
+// ones had); else rolls it back.  Tets that did not change are left out of
+// the comparison: an unrelated bad neighbour must not veto a fix.
+template <class Change>
+bool try_change(EditableMesh& mesh, int32_t t, const TopologyRules& rules, Change&& change) {
+    const Tet q = mesh.tet(t);
+    std::vector<int32_t> involved(q.begin(), q.end());
+    const std::vector<int32_t> region = region_of(mesh, involved);
+    std::vector<TetPoints> shapes_before;
+    for (int32_t s : region) shapes_before.push_back(mesh.tet_points(s));
+    const int32_t old_capacity = mesh.tet_capacity();
+    const size_t mark = mesh.checkpoint();
+    const std::vector<int32_t> made = change();
+    if (made.empty()) {
+        mesh.rollback(mark);
+        return false;
+    }
+    involved.insert(involved.end(), made.begin(), made.end());
+    for (int round = 0; round < kRelocationRounds; ++round)
+        for (int32_t v : involved)
+            if (!mesh.tets_of(v).empty()) relocate(mesh, v, rules);
+    // A tet changed if it is gone, new, or has moved.
+    double before = 1.0, after = 1.0;
+    CosineRange range_before{-1.0, 1.0}, range_after{-1.0, 1.0};
+    const auto widen = [](CosineRange& r, const TetPoints& p) {
+        const CosineRange c = tet_shape(p).cosines;
+        r.of_min = std::max(r.of_min, c.of_min);
+        r.of_max = std::min(r.of_max, c.of_max);
+    };
+    for (size_t k = 0; k < region.size(); ++k) {
+        const int32_t s = region[k];
+        if (mesh.alive(s) && mesh.tet_points(s) == shapes_before[k]) continue;
+        before = std::min(before, min_dihedral_sine(shapes_before[k]));
+        widen(range_before, shapes_before[k]);
+    }
+    for (int32_t s : region_of(mesh, involved)) {
+        const auto k = std::lower_bound(region.begin(), region.end(), s) - region.begin();
+        const bool old = s < old_capacity && k < static_cast<long>(region.size()) && region[k] == s;
+        if (old && mesh.tet_points(s) == shapes_before[k]) continue;
+        const TetPoints p = mesh.tet_points(s);
+        after = std::min(after, min_dihedral_sine(p));
+        widen(range_after, p);
+    }
+    if (after > before + kGain && (!rules.never_worse || within(range_after, range_before))) return true;
+    mesh.rollback(mark);
+    return false;
+}
+
+}  // namespace
+
+TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s) {
+    TopologyCounts counts;
+    // The operations inside try_change make tets that only the relocation
+    // after them improves: they are judged as a whole, there.
+    TopologyRules loose = s.rules;
+    loose.never_worse = false;
+    const double bad_sine = std::sin(s.bad_angle_deg * kDegree);
+    if (s.flip) counts.flips += flip_pass(mesh, s.rules);
+    if (s.insert || s.collapse) {
+        for (int32_t t : bad_tets_by_quality(mesh, bad_sine)) {
+            if (!mesh.alive(t)) continue;
+            const BadTet bad = classify_bad_tet(mesh.tet_points(t), s.bad_angle_deg);
+            if (s.insert && (bad.kind == BadTetKind::Spade || bad.kind == BadTetKind::Cap || bad.kind == BadTetKind::Sliver)) {
+                int32_t made = 0;
+                if (try_change(mesh, t, s.rules, [&] {
+                        const std::vector<int32_t> v = insert_for(mesh, t, bad, loose);
+                        made = static_cast<int32_t>(v.size());
+                        return v;
+                    }))
+                    counts.inserted += made;
+            } else if (s.collapse && bad.kind == BadTetKind::ShortEdge) {
+                // The shortest edge, collapsed by the position rules.
+                const TetPoints p = mesh.tet_points(t);
+                int shortest = 0;
+                for (int e = 1; e < 6; ++e)
+                    if ((p[kEdgeVertex[e][1]] - p[kEdgeVertex[e][0]]).squaredNorm() <
+                        (p[kEdgeVertex[shortest][1]] - p[kEdgeVertex[shortest][0]]).squaredNorm())
+                        shortest = e;
+                const Tet q = mesh.tet(t);
+                if (try_change(mesh, t, s.rules, [&] {
+                        const int32_t kept = collapse_edge(mesh, q[kEdgeVertex[shortest][0]], q[kEdgeVertex[shortest][1]], loose, 0.0);
+                        return kept >= 0 ? std::vector<int32_t>{kept} : std::vector<int32_t>{};
+                    }))
+                    ++counts.collapsed;
+            }
+        }
+        if (s.flip && counts.inserted + counts.collapsed > 0) counts.flips += flip_pass(mesh, s.rules);
+    }
+    mesh.commit();
+    return counts;
+}
+
+}  // namespace bodt
