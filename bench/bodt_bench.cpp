@@ -1,17 +1,21 @@
 // bodt_bench -- the benchmark of libbodt.
 //
 // For every case (a tet mesh: TetGen meshes of surfaces, mesh files, a random
-// sphere, jittered boxes) and every mode it creates the mesh through the
-// public C API, sets the mode, runs a fixed number of bodt_step calls, and
-// records the quality before and after, the relative Hausdorff distance of the
-// boundary, the wall time of the smoothing alone and the peak memory.  One
-// JSON object per case and mode goes to stdout (or --json FILE); a markdown
-// summary to --markdown FILE.  Each run happens in a forked child, so a crash
-// or a hang of the library is reported and the bench goes on.
+// sphere, jittered boxes) and every variant (a mode plus the operations a step
+// does, BODT_PARAM_OPS) it creates the mesh through the public C API, sets the
+// mode and the operations, runs a fixed number of bodt_step calls, and records
+// the quality before and after, the counts before and after (flips and
+// insertions change them), the relative Hausdorff distance of the boundary,
+// the wall time of the steps alone and the peak memory.  Everything after the
+// run is measured on the mesh the handle holds then (its counts, tets and
+// boundary), never on the input arrays.  One JSON object per case and variant
+// goes to stdout (or --json FILE); a markdown summary to --markdown FILE.  Each
+// run happens in a forked child, so a crash or a hang of the library is
+// reported and the bench goes on.
 //
 // Only the public API (bodt.h) is used.  Modes are taken by value (1 laplace,
-// 2 odt, 3 bodt-basic, 4 bodt) so the program builds against a header that
-// does not name them yet; a mode the library refuses is "unsupported".
+// 2 odt, 3 bodt-basic, 4 bodt); a mode or an operation set the library
+// refuses is "unsupported".
 
 #include "bodt.h"
 
@@ -51,18 +55,67 @@ namespace {
 using bench::Case;
 using bench::PreparedMesh;
 
-struct Mode {
-    const char* name;
-    int value;
+// A variant: a mode (by value) and the operations of a step (BODT_PARAM_OPS;
+// kOpsDefault leaves the library's default for the mode, which is
+// SMOOTH | FLIP | INSERT for BODT_MODE_BODT and SMOOTH otherwise).
+constexpr int kOpsDefault = -1;
+struct Variant {
+    std::string name;
+    int mode;
+    int ops;
 };
-const Mode kModes[] = {{"laplace", 1}, {"odt", 2}, {"bodt-basic", 3}, {"bodt", 4}};
+const Variant kVariants[] = {{"laplace", 1, kOpsDefault},
+                             {"odt", 2, kOpsDefault},
+                             {"bodt-basic", 3, kOpsDefault},
+                             {"bodt-smooth", 4, BODT_OP_SMOOTH},
+                             {"bodt", 4, kOpsDefault}};
+
+const char* mode_name(int mode) {
+    switch (mode) {
+        case 1: return "laplace";
+        case 2: return "odt";
+        case 3: return "bodt-basic";
+        case 4: return "bodt";
+        default: return "unknown";
+    }
+}
+
+// The operations a step does, as the library documents its default.
+int effective_ops(int mode, int ops) {
+    if (ops != kOpsDefault) return ops;
+    return mode == 4 ? (BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT) : BODT_OP_SMOOTH;
+}
+
+// "smooth+flip+insert", "none" for 0, "default" for kOpsDefault.
+std::string ops_string(int ops) {
+    if (ops == kOpsDefault) return "default";
+    if (ops == 0) return "none";
+    static const struct {
+        int bit;
+        const char* name;
+    } kBits[] = {{BODT_OP_SMOOTH, "smooth"}, {BODT_OP_FLIP, "flip"}, {BODT_OP_INSERT, "insert"},
+                 {BODT_OP_COLLAPSE, "collapse"}};
+    std::string o;
+    int rest = ops;
+    for (const auto& b : kBits)
+        if (ops & b.bit) {
+            o += (o.empty() ? "" : "+") + std::string(b.name);
+            rest &= ~b.bit;
+        }
+    if (rest) o += (o.empty() ? "" : "+") + std::to_string(rest);
+    return o;
+}
 
 // ---------------------------------------------------------------- options
 
 struct Options {
-    std::vector<Mode> modes;
+    std::vector<Variant> variants;
     int iterations = 20;
-    int never_worse = -1;  // -1: library default
+    int never_worse = -1;     // -1: library default
+    bool ops_override = false;  // --ops given: every variant gets ops
+    int ops = kOpsDefault;
+    int keep_surface = -1;    // -1: library default
+    double bad_angle = -1.0;  // < 0: library default
     std::string json_path, markdown_path, write_dir;
     std::string shared_dir = BODT_BENCH_DEFAULT_SHARED;
     bool large = false;
@@ -76,20 +129,27 @@ struct Options {
 void usage(FILE* f) {
     std::fprintf(f,
                  "usage: bodt_bench [options]\n"
-                 "  --modes LIST         comma-separated of laplace,odt,bodt-basic,bodt or mode values\n"
-                 "                       (default: laplace,odt,bodt-basic,bodt = 1,2,3,4)\n"
+                 "  --modes LIST         comma-separated variants: laplace, odt, bodt-basic,\n"
+                 "                       bodt-smooth (mode bodt, ops smooth: the 0.2 behaviour),\n"
+                 "                       bodt (mode bodt, its default ops smooth+flip+insert),\n"
+                 "                       or mode values (1..4, with the mode's default ops)\n"
+                 "                       (default: laplace,odt,bodt-basic,bodt-smooth,bodt)\n"
+                 "  --ops LIST           BODT_PARAM_OPS for every variant: 'default', an integer, or\n"
+                 "                       '+' or ',' separated of smooth,flip,insert,collapse\n"
                  "  --iterations N       bodt_step calls per run (default 20)\n"
                  "  --never-worse 0|1    set BODT_PARAM_NEVER_WORSE (default: the library's default)\n"
+                 "  --keep-surface 0|1   set BODT_PARAM_KEEP_SURFACE (default: the library's default)\n"
+                 "  --bad-angle DEG      set BODT_PARAM_BAD_ANGLE (default: the library's default)\n"
                  "  --json FILE          JSON lines to FILE instead of stdout\n"
                  "  --markdown FILE      write the markdown summary to FILE\n"
-                 "  --write-dir DIR      write CASE.input.mesh and CASE.MODE.mesh there (bodt_mesh_write)\n"
+                 "  --write-dir DIR      write CASE.input.mesh and CASE.VARIANT.mesh there (bodt_mesh_write)\n"
                  "  --shared DIR         the shared folder with meshes/ (default %s)\n"
                  "  --no-shared          generated cases only\n"
                  "  --large              add the ~1e5-tet jittered box\n"
                  "  --cases REGEX        only cases whose name matches (ECMAScript regex, searched)\n"
                  "  --surface FILE       add a closed .off/.stl surface (TetGen -pQ and -pqQ)\n"
                  "  --mesh FILE          add a tet mesh file (.mesh, .node/.ele, optionally .gz)\n"
-                 "  --timeout SECONDS    per case and mode (default 900; 0 = none)\n"
+                 "  --timeout SECONDS    per case and variant (default 900; 0 = none)\n"
                  "  --no-fork            run in this process (for debuggers; a crash ends the bench)\n"
                  "  --list               list the cases and exit\n"
                  "  --help\n"
@@ -117,6 +177,19 @@ bool parse_int(const char* s, int& out) {
     return true;
 }
 
+// Split at any of the characters in seps; empty items are dropped.
+std::vector<std::string> split_list(const std::string& list, const char* seps) {
+    std::vector<std::string> out;
+    size_t p = 0;
+    while (p <= list.size()) {
+        size_t q = list.find_first_of(seps, p);
+        if (q == std::string::npos) q = list.size();
+        if (q > p) out.push_back(list.substr(p, q - p));
+        p = q + 1;
+    }
+    return out;
+}
+
 Options parse_args(int argc, char** argv) {
     Options o;
     auto value = [&](int& i) -> const char* {
@@ -129,32 +202,50 @@ Options parse_args(int argc, char** argv) {
             usage(stdout);
             std::exit(0);
         } else if (a == "--modes") {
-            std::string list = value(i);
-            o.modes.clear();
-            size_t p = 0;
-            while (p <= list.size()) {
-                size_t q = list.find(',', p);
-                if (q == std::string::npos) q = list.size();
-                const std::string name = list.substr(p, q - p);
+            o.variants.clear();
+            for (const std::string& name : split_list(value(i), ",")) {
                 bool found = false;
-                for (const Mode& m : kModes)
-                    if (name == m.name) {
-                        o.modes.push_back(m);
+                for (const Variant& v : kVariants)
+                    if (name == v.name) {
+                        o.variants.push_back(v);
                         found = true;
                     }
                 int mval = 0;
                 if (!found && parse_int(name.c_str(), mval) && mval > 0) {  // a mode by its value
-                    static std::vector<std::string> names;  // kept alive for Mode::name
-                    names.reserve(64);
-                    if (names.size() == names.capacity()) usage_error("too many numeric modes");
-                    names.push_back("mode" + name);
-                    o.modes.push_back({names.back().c_str(), mval});
+                    o.variants.push_back({"mode" + name, mval, kOpsDefault});
                     found = true;
                 }
                 if (!found)
-                    usage_error("unknown mode '%s' (laplace, odt, bodt-basic, bodt or a mode value)", name.c_str());
-                p = q + 1;
+                    usage_error("unknown variant '%s' (laplace, odt, bodt-basic, bodt-smooth, bodt or a mode value)",
+                                name.c_str());
             }
+            if (o.variants.empty()) usage_error("--modes needs at least one variant");
+        } else if (a == "--ops") {
+            const std::string list = value(i);
+            o.ops_override = true;
+            if (list == "default") {
+                o.ops = kOpsDefault;
+            } else if (parse_int(list.c_str(), o.ops)) {
+                if (o.ops < 0) usage_error("--ops takes a value >= 0 or 'default'");
+            } else {
+                o.ops = 0;
+                for (const std::string& name : split_list(list, ",+")) {
+                    if (name == "smooth") o.ops |= BODT_OP_SMOOTH;
+                    else if (name == "flip") o.ops |= BODT_OP_FLIP;
+                    else if (name == "insert") o.ops |= BODT_OP_INSERT;
+                    else if (name == "collapse") o.ops |= BODT_OP_COLLAPSE;
+                    else usage_error("unknown operation '%s' (smooth, flip, insert, collapse)", name.c_str());
+                }
+            }
+        } else if (a == "--keep-surface") {
+            const std::string v = value(i);
+            if (v != "0" && v != "1") usage_error("--keep-surface takes 0 or 1");
+            o.keep_surface = v == "1";
+        } else if (a == "--bad-angle") {
+            const char* v = value(i);
+            char* end = nullptr;
+            o.bad_angle = std::strtod(v, &end);
+            if (end == v || *end || !(o.bad_angle >= 0)) usage_error("--bad-angle needs degrees >= 0");
         } else if (a == "--iterations") {
             if (!parse_int(value(i), o.iterations) || o.iterations < 1) usage_error("--iterations needs N >= 1");
         } else if (a == "--never-worse") {
@@ -194,7 +285,9 @@ Options parse_args(int argc, char** argv) {
             usage_error("unknown argument '%s'", a.c_str());
         }
     }
-    if (o.modes.empty()) o.modes.assign(std::begin(kModes), std::end(kModes));
+    if (o.variants.empty()) o.variants.assign(std::begin(kVariants), std::end(kVariants));
+    if (o.ops_override)
+        for (Variant& v : o.variants) v.ops = o.ops;
     return o;
 }
 
@@ -202,7 +295,8 @@ Options parse_args(int argc, char** argv) {
 
 struct Stats {
     int32_t vertices, tets, boundary_faces, lib_boundary_faces;
-    int32_t inverted, lt10, gt165;
+    int32_t inverted, unused, lt10, gt165;
+    int32_t in30_140;  // tets whose 6 dihedral angles all lie in [30, 140] degrees
     double min_dihedral, max_dihedral, mean_dihedral;
     double min_stretch, mean_stretch, volume;
 };
@@ -214,6 +308,10 @@ struct RunResult {
     char message[768];  // bodt_mesh_last_error or our own
     int32_t steps_done;
     int32_t never_worse;  // effective value, -1 unknown
+    int32_t ops;          // BODT_PARAM_OPS as read back (kOpsDefault = the mode's default)
+    int32_t ops_effective;  // the operations a step does (the default resolved), -1 unknown
+    int32_t keep_surface;   // effective value, -1 unknown
+    double bad_angle;       // effective value, NaN unknown
     int32_t has_before, has_after;
     Stats before, after;
     double volume_change_rel;
@@ -222,6 +320,7 @@ struct RunResult {
     double hausdorff_abs, hausdorff_rel, bbox_side;
     double time_s, hausdorff_time_s;
     int64_t vertices_moved, moves_rejected, moves_shortened;
+    int64_t flips, inserted, collapsed;  // sums over the steps
     int32_t vertices_changed;
     double last_max_move;
     double updates_per_s;
@@ -236,7 +335,9 @@ void set_str(char* dst, size_t cap, const std::string& s) {
 RunResult empty_result() {
     RunResult r{};
     SET(r.status, "ok");
-    r.never_worse = -1;
+    r.never_worse = r.keep_surface = r.ops_effective = -1;
+    r.ops = kOpsDefault;
+    r.bad_angle = NAN;
     r.volume_change_rel = r.region_volume_change_rel_max = r.hausdorff_abs = r.hausdorff_rel = NAN;
     return r;
 }
@@ -263,19 +364,24 @@ int measure(const bodt_mesh* m, Stats& s, bench::Surface& surf, std::vector<int3
     q.size = sizeof q;
     if ((st = bodt_mesh_quality(m, &q)) != BODT_OK) return where = "bodt_mesh_quality", st;
     s.inverted = q.num_inverted;
+    s.unused = q.num_unused_vertices;
     s.min_dihedral = q.min_dihedral;
     s.max_dihedral = q.max_dihedral;
     s.mean_dihedral = q.mean_dihedral;
     s.min_stretch = q.min_stretch;
     s.mean_stretch = q.mean_stretch;
     s.volume = q.volume;
-    std::vector<double> v(static_cast<size_t>(nt));
-    if ((st = bodt_mesh_tet_quality(m, BODT_MEASURE_MIN_DIHEDRAL, v.data(), v.size())) != BODT_OK)
+    std::vector<double> mn(static_cast<size_t>(nt)), mx(static_cast<size_t>(nt));
+    if ((st = bodt_mesh_tet_quality(m, BODT_MEASURE_MIN_DIHEDRAL, mn.data(), mn.size())) != BODT_OK)
         return where = "bodt_mesh_tet_quality(MIN_DIHEDRAL)", st;
-    s.lt10 = int32_t(std::count_if(v.begin(), v.end(), [](double a) { return a < 10.0; }));
-    if ((st = bodt_mesh_tet_quality(m, BODT_MEASURE_MAX_DIHEDRAL, v.data(), v.size())) != BODT_OK)
+    if ((st = bodt_mesh_tet_quality(m, BODT_MEASURE_MAX_DIHEDRAL, mx.data(), mx.size())) != BODT_OK)
         return where = "bodt_mesh_tet_quality(MAX_DIHEDRAL)", st;
-    s.gt165 = int32_t(std::count_if(v.begin(), v.end(), [](double a) { return a > 165.0; }));
+    s.lt10 = s.gt165 = s.in30_140 = 0;
+    for (size_t t = 0; t < mn.size(); ++t) {
+        s.lt10 += mn[t] < 10.0;
+        s.gt165 += mx[t] > 165.0;
+        s.in30_140 += mn[t] >= 30.0 && mx[t] <= 140.0;
+    }
     surf.xyz.resize(3 * size_t(nv));
     if ((st = bodt_mesh_get_vertices(m, surf.xyz.data(), surf.xyz.size())) != BODT_OK)
         return where = "bodt_mesh_get_vertices", st;
@@ -306,13 +412,13 @@ std::string errmsg(const bodt_mesh* m, int status) {
     return std::string(bodt_status_string(status)) + (e && *e ? std::string(": ") + e : std::string());
 }
 
-RunResult run_one(const Case& c, const PreparedMesh& pm, const Mode& mode, const Options& opt) {
+RunResult run_one(const Case& c, const PreparedMesh& pm, const Variant& var, const Options& opt) {
     RunResult r = empty_result();
     auto fail = [&](const char* status, const std::string& where, const std::string& msg) {
         SET(r.status, status);
         SET(r.where, where);
         SET(r.message, msg);
-        std::fprintf(stderr, "bodt_bench: %s / %s: %s: %s\n", c.name.c_str(), mode.name, where.c_str(),
+        std::fprintf(stderr, "bodt_bench: %s / %s: %s: %s\n", c.name.c_str(), var.name.c_str(), where.c_str(),
                      msg.c_str());
         return r;
     };
@@ -353,22 +459,44 @@ RunResult run_one(const Case& c, const PreparedMesh& pm, const Mode& mode, const
                          errmsg(mh.m, st).c_str());
     }
 
-    st = bodt_set_mode(mh.m, mode.value);
-    if (st == BODT_ERR_INVALID_ARGUMENT || st == BODT_ERR_UNSUPPORTED) {
+    auto unsupported = [&](const char* call) {
         SET(r.status, "unsupported");
-        SET(r.where, "bodt_set_mode");
+        SET(r.where, call);
         SET(r.message, errmsg(mh.m, st));
         return r;
-    }
+    };
+    st = bodt_set_mode(mh.m, var.mode);
+    if (st == BODT_ERR_INVALID_ARGUMENT || st == BODT_ERR_UNSUPPORTED) return unsupported("bodt_set_mode");
     if (st != BODT_OK) return fail("error", "bodt_set_mode", errmsg(mh.m, st));
+    if (var.ops != kOpsDefault) {
+        st = bodt_set_param_int(mh.m, BODT_PARAM_OPS, var.ops);
+        if (st == BODT_ERR_INVALID_ARGUMENT || st == BODT_ERR_UNSUPPORTED)
+            return unsupported("bodt_set_param_int(OPS)");
+        if (st != BODT_OK) return fail("error", "bodt_set_param_int(OPS)", errmsg(mh.m, st));
+    }
     if (opt.never_worse >= 0) {
         st = bodt_set_param_int(mh.m, BODT_PARAM_NEVER_WORSE, opt.never_worse);
         if (st != BODT_OK) return fail("error", "bodt_set_param_int(NEVER_WORSE)", errmsg(mh.m, st));
     }
-    int32_t nw = -1;
-    if (bodt_get_param_int(mh.m, BODT_PARAM_NEVER_WORSE, &nw) == BODT_OK) r.never_worse = nw;
+    if (opt.keep_surface >= 0) {
+        st = bodt_set_param_int(mh.m, BODT_PARAM_KEEP_SURFACE, opt.keep_surface);
+        if (st != BODT_OK) return fail("error", "bodt_set_param_int(KEEP_SURFACE)", errmsg(mh.m, st));
+    }
+    if (opt.bad_angle >= 0) {
+        st = bodt_set_param_double(mh.m, BODT_PARAM_BAD_ANGLE, opt.bad_angle);
+        if (st != BODT_OK) return fail("error", "bodt_set_param_double(BAD_ANGLE)", errmsg(mh.m, st));
+    }
+    int32_t iv = -1;
+    if (bodt_get_param_int(mh.m, BODT_PARAM_NEVER_WORSE, &iv) == BODT_OK) r.never_worse = iv;
+    if (bodt_get_param_int(mh.m, BODT_PARAM_OPS, &iv) == BODT_OK) {
+        r.ops = iv;
+        r.ops_effective = effective_ops(var.mode, iv);
+    }
+    if (bodt_get_param_int(mh.m, BODT_PARAM_KEEP_SURFACE, &iv) == BODT_OK) r.keep_surface = iv;
+    double dv = NAN;
+    if (bodt_get_param_double(mh.m, BODT_PARAM_BAD_ANGLE, &dv) == BODT_OK) r.bad_angle = dv;
 
-    // The smoothing, and only it, is timed.
+    // The steps, and only they, are timed.
     bool step_failed = false;
     std::string step_where, step_msg;
     const auto t0 = std::chrono::steady_clock::now();
@@ -387,15 +515,22 @@ RunResult run_one(const Case& c, const PreparedMesh& pm, const Mode& mode, const
         r.vertices_moved += rep.vertices_moved;
         r.moves_rejected += rep.moves_rejected;
         r.moves_shortened += rep.moves_shortened;
+        r.flips += rep.flips;
+        r.inserted += rep.vertices_inserted;
+        r.collapsed += rep.edges_collapsed;
         r.last_max_move = rep.max_move;
     }
     const auto t1 = std::chrono::steady_clock::now();
     r.time_s = std::chrono::duration<double>(t1 - t0).count();
     r.updates_per_s = r.time_s > 0 ? double(r.vertices_moved + r.moves_rejected) / r.time_s : 0.0;
 
+    // From here on only the mesh the handle holds now: the steps may have
+    // added vertices (appended; input vertices keep their index), and
+    // renumbered, added or removed tets and boundary faces.
     if ((st = measure(mh.m, r.after, after_surf, tets, index_base, where)) != BODT_OK)
         return fail("error", where, errmsg(mh.m, st));
     r.has_after = 1;
+    // input vertices whose coordinates changed (appended ones are not counted)
     const size_t common = std::min(before_surf.xyz.size(), after_surf.xyz.size()) / 3;
     for (size_t v = 0; v < common; ++v)
         if (before_surf.xyz[3 * v] != after_surf.xyz[3 * v] || before_surf.xyz[3 * v + 1] != after_surf.xyz[3 * v + 1] ||
@@ -417,9 +552,9 @@ RunResult run_one(const Case& c, const PreparedMesh& pm, const Mode& mode, const
     r.hausdorff_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - h0).count();
 
     if (!opt.write_dir.empty()) {
-        const std::string out_path = opt.write_dir + "/" + c.name + "." + mode.name + ".mesh";
+        const std::string out_path = opt.write_dir + "/" + c.name + "." + var.name + ".mesh";
         if ((st = bodt_mesh_write(mh.m, out_path.c_str())) != BODT_OK)
-            std::fprintf(stderr, "bodt_bench: %s / %s: bodt_mesh_write %s: %s\n", c.name.c_str(), mode.name,
+            std::fprintf(stderr, "bodt_bench: %s / %s: bodt_mesh_write %s: %s\n", c.name.c_str(), var.name.c_str(),
                          out_path.c_str(), errmsg(mh.m, st).c_str());
     }
     if (step_failed) fail("error", step_where, step_msg);
@@ -452,9 +587,9 @@ size_t read_all(int fd, void* p, size_t n) {
 
 // Runs run_one in a forked child (so a crash or hang is contained) and takes
 // the peak RSS of that child.
-RunResult run_isolated(const Case& c, const PreparedMesh& pm, const Mode& mode, const Options& opt) {
+RunResult run_isolated(const Case& c, const PreparedMesh& pm, const Variant& var, const Options& opt) {
     if (!opt.fork_runs) {
-        RunResult r = run_one(c, pm, mode, opt);
+        RunResult r = run_one(c, pm, var, opt);
         struct rusage ru;
         getrusage(RUSAGE_SELF, &ru);
         r.peak_rss_mb = double(ru.ru_maxrss) / 1024.0;
@@ -474,7 +609,7 @@ RunResult run_isolated(const Case& c, const PreparedMesh& pm, const Mode& mode, 
     if (pid == 0) {
         close(fds[0]);
         if (opt.timeout_s > 0) alarm(unsigned(opt.timeout_s));
-        const RunResult r = run_one(c, pm, mode, opt);
+        const RunResult r = run_one(c, pm, var, opt);
         const bool ok = write_all(fds[1], &r, sizeof r);
         std::fflush(stderr);
         _exit(ok ? 0 : 3);
@@ -505,13 +640,13 @@ RunResult run_isolated(const Case& c, const PreparedMesh& pm, const Mode& mode, 
         SET(r.message, sig == SIGALRM ? "no result after " + std::to_string(opt.timeout_s) + " s"
                                       : std::string("killed by signal ") + std::to_string(sig) + " (" +
                                             strsignal(sig) + ")");
-        std::fprintf(stderr, "bodt_bench: %s / %s: %s\n", c.name.c_str(), mode.name, r.message);
+        std::fprintf(stderr, "bodt_bench: %s / %s: %s\n", c.name.c_str(), var.name.c_str(), r.message);
     } else {
         SET(r.status, "crashed");
         SET(r.where, "child process");
         SET(r.message, "child exited with status " + std::to_string(WIFEXITED(wst) ? WEXITSTATUS(wst) : -1) +
                            " without a result");
-        std::fprintf(stderr, "bodt_bench: %s / %s: %s\n", c.name.c_str(), mode.name, r.message);
+        std::fprintf(stderr, "bodt_bench: %s / %s: %s\n", c.name.c_str(), var.name.c_str(), r.message);
     }
     r.peak_rss_mb = double(ru.ru_maxrss) / 1024.0;
     return r;
@@ -543,6 +678,12 @@ std::string json_num(double v, const char* fmt = "%.6g") {
     return b;
 }
 
+double pct_30_140(const Stats& s) { return s.tets > 0 ? 100.0 * s.in30_140 / s.tets : NAN; }
+
+double growth_pct(const RunResult& r) {
+    return r.before.vertices > 0 ? 100.0 * (r.after.vertices - r.before.vertices) / r.before.vertices : NAN;
+}
+
 std::string stats_json(const Stats& s) {
     std::string o = "{";
     o += "\"vertices\":" + std::to_string(s.vertices);
@@ -554,22 +695,29 @@ std::string stats_json(const Stats& s) {
     o += ",\"mean_dihedral\":" + json_num(s.mean_dihedral, "%.4f");
     o += ",\"tets_min_dihedral_lt_10\":" + std::to_string(s.lt10);
     o += ",\"tets_max_dihedral_gt_165\":" + std::to_string(s.gt165);
+    o += ",\"tets_dihedral_30_140\":" + std::to_string(s.in30_140);
+    o += ",\"pct_dihedral_30_140\":" + json_num(pct_30_140(s), "%.3f");
     o += ",\"stretch_min\":" + json_num(s.min_stretch, "%.5f");
     o += ",\"stretch_mean\":" + json_num(s.mean_stretch, "%.5f");
     o += ",\"inverted\":" + std::to_string(s.inverted);
+    o += ",\"unused_vertices\":" + std::to_string(s.unused);
     o += ",\"volume\":" + json_num(s.volume, "%.10g");
     return o + "}";
 }
 
-std::string result_json(const Case& c, const std::string& note, const Mode& mode, const RunResult& r,
+std::string result_json(const Case& c, const std::string& note, const Variant& var, const RunResult& r,
                         const Options& opt) {
     std::string o = "{";
     o += "\"case\":" + json_str(c.name);
     o += ",\"kind\":" + json_str(c.kind);
     o += ",\"source\":" + json_str(c.source);
     if (!note.empty()) o += ",\"note\":" + json_str(note);
-    o += ",\"mode\":" + json_str(mode.name);
-    o += ",\"mode_value\":" + std::to_string(mode.value);
+    o += ",\"variant\":" + json_str(var.name);
+    o += ",\"mode\":" + json_str(mode_name(var.mode));
+    o += ",\"mode_value\":" + std::to_string(var.mode);
+    o += ",\"ops_requested\":" + (var.ops == kOpsDefault ? std::string("null") : std::to_string(var.ops));
+    o += ",\"ops\":" + (r.ops_effective >= 0 ? std::to_string(r.ops_effective) : std::string("null"));
+    o += ",\"ops_names\":" + json_str(r.ops_effective >= 0 ? ops_string(r.ops_effective) : "unknown");
     o += ",\"status\":" + json_str(r.status);
     if (r.where[0]) o += ",\"where\":" + json_str(r.where);
     if (r.message[0]) o += ",\"message\":" + json_str(r.message);
@@ -577,6 +725,8 @@ std::string result_json(const Case& c, const std::string& note, const Mode& mode
     o += ",\"iterations\":" + std::to_string(opt.iterations);
     o += ",\"steps_done\":" + std::to_string(r.steps_done);
     o += ",\"never_worse\":" + (r.never_worse >= 0 ? std::to_string(r.never_worse) : std::string("null"));
+    o += ",\"keep_surface\":" + (r.keep_surface >= 0 ? std::to_string(r.keep_surface) : std::string("null"));
+    o += ",\"bad_angle\":" + json_num(r.bad_angle);
     if (r.has_before) {
         o += ",\"vertices\":" + std::to_string(r.before.vertices);
         o += ",\"tets\":" + std::to_string(r.before.tets);
@@ -585,6 +735,16 @@ std::string result_json(const Case& c, const std::string& note, const Mode& mode
     }
     if (r.has_after) {
         o += ",\"after\":" + stats_json(r.after);
+        o += ",\"vertices_in\":" + std::to_string(r.before.vertices);
+        o += ",\"vertices_out\":" + std::to_string(r.after.vertices);
+        o += ",\"tets_in\":" + std::to_string(r.before.tets);
+        o += ",\"tets_out\":" + std::to_string(r.after.tets);
+        o += ",\"vertex_growth_pct\":" + json_num(growth_pct(r), "%.3f");
+        o += ",\"flips\":" + std::to_string(r.flips);
+        o += ",\"inserted\":" + std::to_string(r.inserted);
+        o += ",\"collapsed\":" + std::to_string(r.collapsed);
+        o += ",\"pct_dihedral_30_140\":" + json_num(pct_30_140(r.after), "%.3f");
+        o += ",\"pct_dihedral_30_140_before\":" + json_num(pct_30_140(r.before), "%.3f");
         o += std::string(",\"min_dihedral_worse\":") + (r.after.min_dihedral < r.before.min_dihedral ? "true" : "false");
         o += std::string(",\"max_dihedral_worse\":") + (r.after.max_dihedral > r.before.max_dihedral ? "true" : "false");
         o += std::string(",\"stretch_min_worse\":") + (r.after.min_stretch < r.before.min_stretch ? "true" : "false");
@@ -614,45 +774,88 @@ struct Row {
     const Case* c;
     std::string note;
     std::string prep_error;
-    std::vector<RunResult> runs;  // one per mode, in opt.modes order
+    std::vector<RunResult> runs;  // one per variant, in opt.variants order
 };
 
 std::string fmt(const char* f, ...) {
-    char b[256];
-    va_list ap;
+    va_list ap, ap2;
     va_start(ap, f);
-    std::vsnprintf(b, sizeof b, f, ap);
+    va_copy(ap2, ap);
+    const int n = std::vsnprintf(nullptr, 0, f, ap);
     va_end(ap);
+    std::string b(n > 0 ? size_t(n) : 0, '\0');
+    if (n > 0) std::vsnprintf(&b[0], size_t(n) + 1, f, ap2);
+    va_end(ap2);
     return b;
+}
+
+std::string pct_cell(double h) {
+    return !std::isfinite(h) ? "–" : (h == 0 ? "0" : fmt("%.3g", h));
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return double(NAN);
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The first run of a row that measured the input.
+const RunResult* before_run(const Row& row) {
+    for (const auto& r : row.runs)
+        if (r.has_before) return &r;
+    return nullptr;
 }
 
 std::string markdown(const std::vector<Row>& rows, const Options& opt, const std::vector<std::string>& notes,
                      double total_s) {
+    const std::vector<Variant>& vars = opt.variants;
+    const size_t nvar = vars.size();
     std::string md;
     char date[64];
     const std::time_t now = std::time(nullptr);
     std::strftime(date, sizeof date, "%Y-%m-%d %H:%M", std::localtime(&now));
     md += "# bodt_bench\n\n";
-    md += fmt("libbodt %s, %d bodt_step calls per case and mode, BODT_PARAM_NEVER_WORSE %s; %s; total %.0f s.\n\n",
-              bodt_version_string(), opt.iterations,
-              opt.never_worse < 0 ? "= library default" : (opt.never_worse ? "= 1" : "= 0"), date, total_s);
+    md += fmt("libbodt %s, %d bodt_step calls per case and variant, BODT_PARAM_NEVER_WORSE %s", bodt_version_string(),
+              opt.iterations, opt.never_worse < 0 ? "= library default" : (opt.never_worse ? "= 1" : "= 0"));
+    if (opt.keep_surface >= 0) md += fmt(", BODT_PARAM_KEEP_SURFACE = %d", opt.keep_surface);
+    if (opt.bad_angle >= 0) md += fmt(", BODT_PARAM_BAD_ANGLE = %g", opt.bad_angle);
+    md += fmt("; %s; total %.0f s.\n\n", date, total_s);
+
+    // The operations each variant did (as read back from the library).
+    std::vector<int> ops(nvar);
+    for (size_t m = 0; m < nvar; ++m) {
+        ops[m] = effective_ops(vars[m].mode, vars[m].ops);
+        for (const Row& row : rows)
+            if (m < row.runs.size() && row.runs[m].ops_effective >= 0) {
+                ops[m] = row.runs[m].ops_effective;
+                break;
+            }
+    }
+    md += "Variants:";
+    for (size_t m = 0; m < nvar; ++m)
+        md += fmt("%s `%s` = mode %s, ops %s", m ? ";" : "", vars[m].name.c_str(), mode_name(vars[m].mode),
+                  ops_string(ops[m]).c_str());
+    md += ".\n\n";
+
     md += "Angles in degrees (after the run); `<10/>165` = tets with min dihedral < 10 / max dihedral > 165; "
           "H = relative Hausdorff distance of the boundary, in % of the largest bounding-box side; "
-          "s = wall time of the smoothing alone; `!` marks an angle worse than before. "
+          "s = wall time of the bodt_step calls alone; `!` marks an angle worse than before. "
           "Last row: medians of the angles and of H over the cases that ran, sums of the counts and times.\n\n";
 
-    // A mode the library refused on every case gets one column.
-    std::vector<bool> all_unsupported(opt.modes.size(), true);
-    for (size_t m = 0; m < opt.modes.size(); ++m)
+    // A variant the library refused on every case gets one column.
+    std::vector<bool> all_unsupported(nvar, true);
+    for (size_t m = 0; m < nvar; ++m)
         for (const Row& row : rows)
             if (m < row.runs.size() && std::strcmp(row.runs[m].status, "unsupported") != 0)
                 all_unsupported[m] = false;
-    if (rows.empty()) all_unsupported.assign(opt.modes.size(), false);
+    if (rows.empty()) all_unsupported.assign(nvar, false);
 
+    // ---- table 1: quality, boundary distance, time
     md += "| case | V / T / bF | before min/max | before <10/>165 |";
     std::string sep = "|---|---:|---:|---:|";
-    for (size_t m = 0; m < opt.modes.size(); ++m) {
-        const char* n = opt.modes[m].name;
+    for (size_t m = 0; m < nvar; ++m) {
+        const char* n = vars[m].name.c_str();
         if (all_unsupported[m]) {
             md += fmt(" %s |", n);
             sep += "---|";
@@ -663,12 +866,7 @@ std::string markdown(const std::vector<Row>& rows, const Options& opt, const std
     }
     md += "\n" + sep + "\n";
     for (const Row& row : rows) {
-        const RunResult* b = nullptr;
-        for (const auto& r : row.runs)
-            if (r.has_before) {
-                b = &r;
-                break;
-            }
+        const RunResult* b = before_run(row);
         md += "| " + row.c->name + " | ";
         if (b)
             md += fmt("%d / %d / %d | %.2f/%.2f | %d/%d |", b->before.vertices, b->before.tets,
@@ -676,7 +874,7 @@ std::string markdown(const std::vector<Row>& rows, const Options& opt, const std
                       b->before.gt165);
         else
             md += "– | – | – |";
-        for (size_t m = 0; m < opt.modes.size(); ++m) {
+        for (size_t m = 0; m < nvar; ++m) {
             if (!row.prep_error.empty() || m >= row.runs.size()) {
                 md += all_unsupported[m] ? " error |" : " error | – | – | – |";
                 continue;
@@ -688,11 +886,10 @@ std::string markdown(const std::vector<Row>& rows, const Options& opt, const std
                 md += " unsupported | – | – | – |";
             } else if (r.has_after) {
                 const bool err = std::strcmp(r.status, "ok") != 0;
-                const double h = r.hausdorff_rel * 100.0;
                 md += fmt(" %s%.2f%s/%.2f%s | %d/%d | %s | %.2f |", err ? "(error) " : "", r.after.min_dihedral,
                           r.after.min_dihedral < r.before.min_dihedral ? "!" : "", r.after.max_dihedral,
                           r.after.max_dihedral > r.before.max_dihedral ? "!" : "", r.after.lt10, r.after.gt165,
-                          !std::isfinite(h) ? "–" : (h == 0 ? "0" : fmt("%.3g", h).c_str()), r.time_s);
+                          pct_cell(r.hausdorff_rel * 100.0).c_str(), r.time_s);
             } else {
                 md += fmt(" %s | – | – | – |", r.status);
             }
@@ -700,26 +897,18 @@ std::string markdown(const std::vector<Row>& rows, const Options& opt, const std
         md += "\n";
     }
     if (!rows.empty()) {
-        auto median = [](std::vector<double> v) {
-            if (v.empty()) return double(NAN);
-            std::sort(v.begin(), v.end());
-            const size_t n = v.size();
-            return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-        };
         std::vector<double> bmin, bmax;
         long blt = 0, bgt = 0;
         for (const Row& row : rows)
-            for (const auto& r : row.runs)
-                if (r.has_before) {
-                    bmin.push_back(r.before.min_dihedral);
-                    bmax.push_back(r.before.max_dihedral);
-                    blt += r.before.lt10;
-                    bgt += r.before.gt165;
-                    break;
-                }
+            if (const RunResult* b = before_run(row)) {
+                bmin.push_back(b->before.min_dihedral);
+                bmax.push_back(b->before.max_dihedral);
+                blt += b->before.lt10;
+                bgt += b->before.gt165;
+            }
         md += fmt("| **median / sum** (%zu cases) | | %.2f/%.2f | %ld/%ld |", rows.size(), median(bmin), median(bmax),
                   blt, bgt);
-        for (size_t m = 0; m < opt.modes.size(); ++m) {
+        for (size_t m = 0; m < nvar; ++m) {
             if (all_unsupported[m]) {
                 md += " |";
                 continue;
@@ -737,38 +926,146 @@ std::string markdown(const std::vector<Row>& rows, const Options& opt, const std
                     gt += r.after.gt165;
                     secs += r.time_s;
                 }
-            const double hm = median(hs);
             if (mn.empty()) {
                 md += " – | – | – | – |";
                 continue;
             }
             md += fmt(" %.2f/%.2f (%zu) | %ld/%ld | %s | %.1f |", median(mn), median(mx), mn.size(), lt, gt,
-                      !std::isfinite(hm) ? "–" : (hm == 0 ? "0" : fmt("%.3g", hm).c_str()), secs);
+                      pct_cell(median(hs)).c_str(), secs);
         }
         md += "\n";
     }
 
+    // ---- table 2: share of good tets for every variant, and what the
+    // connectivity-changing operations did for the variants that have them
+    std::vector<size_t> shown, pipe;
+    bool any_collapse = false;
+    for (size_t m = 0; m < nvar; ++m) {
+        if (all_unsupported[m]) continue;
+        shown.push_back(m);
+        bool changes = (ops[m] & ~BODT_OP_SMOOTH) != 0;
+        for (const Row& row : rows)
+            if (m < row.runs.size() && (row.runs[m].flips || row.runs[m].inserted || row.runs[m].collapsed ||
+                                        row.runs[m].after.vertices != row.runs[m].before.vertices ||
+                                        row.runs[m].after.tets != row.runs[m].before.tets))
+                changes = true;
+        if (changes) pipe.push_back(m);
+        if (ops[m] & BODT_OP_COLLAPSE) any_collapse = true;
+        for (const Row& row : rows)
+            if (m < row.runs.size() && row.runs[m].collapsed) any_collapse = true;
+    }
+    if (!rows.empty() && !shown.empty()) {
+        md += "\n% in [30,140] = share of the tets whose six dihedral angles all lie in [30°, 140°] (after the run). ";
+        if (!pipe.empty())
+            md += fmt("For the variants that change the connectivity: ΔV = vertex growth in %% of the input "
+                      "vertices, flips and ins(erted vertices)%s summed over the steps. ",
+                      any_collapse ? ", coll(apsed edges)" : "");
+        md += "Last row: medians of the percentages, sums of the counts.\n\n";
+        md += "| case | before % in [30,140] |";
+        std::string sep2 = "|---|---:|";
+        for (size_t m : shown) {
+            md += fmt(" %s %% |", vars[m].name.c_str());
+            sep2 += "---:|";
+        }
+        for (size_t m : pipe) {
+            const char* n = vars[m].name.c_str();
+            md += fmt(" %s ΔV %% | %s flips | %s ins |", n, n, n);
+            sep2 += "---:|---:|---:|";
+            if (any_collapse) {
+                md += fmt(" %s coll |", n);
+                sep2 += "---:|";
+            }
+        }
+        md += "\n" + sep2 + "\n";
+        const std::string dash_pipe = any_collapse ? " – | – | – | – |" : " – | – | – |";
+        for (const Row& row : rows) {
+            const RunResult* b = before_run(row);
+            md += "| " + row.c->name + " | " + (b ? fmt("%.1f", pct_30_140(b->before)) : std::string("–")) + " |";
+            for (size_t m : shown) {
+                const bool ran = row.prep_error.empty() && m < row.runs.size() && row.runs[m].has_after;
+                md += ran ? fmt(" %.1f |", pct_30_140(row.runs[m].after)) : std::string(" – |");
+            }
+            for (size_t m : pipe) {
+                if (!(row.prep_error.empty() && m < row.runs.size() && row.runs[m].has_after)) {
+                    md += dash_pipe;
+                    continue;
+                }
+                const RunResult& r = row.runs[m];
+                md += fmt(" %+.1f | %" PRId64 " | %" PRId64 " |", growth_pct(r), r.flips, r.inserted);
+                if (any_collapse) md += fmt(" %" PRId64 " |", r.collapsed);
+            }
+            md += "\n";
+        }
+        std::vector<double> bp;
+        for (const Row& row : rows)
+            if (const RunResult* b = before_run(row)) bp.push_back(pct_30_140(b->before));
+        md += fmt("| **median / sum** (%zu cases) | %.1f |", rows.size(), median(bp));
+        for (size_t m : shown) {
+            std::vector<double> p;
+            for (const Row& row : rows)
+                if (m < row.runs.size() && row.runs[m].has_after) p.push_back(pct_30_140(row.runs[m].after));
+            md += p.empty() ? std::string(" – |") : fmt(" %.1f |", median(p));
+        }
+        for (size_t m : pipe) {
+            std::vector<double> g;
+            int64_t fl = 0, in = 0, co = 0;
+            for (const Row& row : rows)
+                if (m < row.runs.size() && row.runs[m].has_after) {
+                    const RunResult& r = row.runs[m];
+                    g.push_back(growth_pct(r));
+                    fl += r.flips;
+                    in += r.inserted;
+                    co += r.collapsed;
+                }
+            if (g.empty()) {
+                md += dash_pipe;
+                continue;
+            }
+            md += fmt(" %+.1f | %" PRId64 " | %" PRId64 " |", median(g), fl, in);
+            if (any_collapse) md += fmt(" %" PRId64 " |", co);
+        }
+        md += "\n";
+    }
+
+    // ---- notes: anything that needs a look
     std::vector<std::string> lines;
     for (const Row& row : rows) {
         if (!row.note.empty()) lines.push_back("`" + row.c->name + "`: " + row.note + ".");
         if (!row.prep_error.empty()) lines.push_back("`" + row.c->name + "`: could not be made: " + row.prep_error);
-        for (size_t m = 0; m < row.runs.size(); ++m) {
+        for (size_t m = 0; m < row.runs.size() && m < nvar; ++m) {
             const RunResult& r = row.runs[m];
-            if (r.has_after && r.region_volume_change_rel_max > 1e-9)
-                lines.push_back(fmt("`%s` / %s: the volume of a region changed by %.3g (relative)", row.c->name.c_str(),
-                                    opt.modes[m].name, r.region_volume_change_rel_max));
-            if (r.has_after && r.after.inverted > r.before.inverted)
-                lines.push_back(fmt("`%s` / %s: %d inverted tets after, %d before", row.c->name.c_str(),
-                                    opt.modes[m].name, r.after.inverted, r.before.inverted));
+            const char* vn = vars[m].name.c_str();
+            if (r.has_after && std::fabs(r.volume_change_rel) > 1e-10)
+                lines.push_back(fmt("**`%s` / %s: the volume changed by %.3g (relative)**", row.c->name.c_str(), vn,
+                                    r.volume_change_rel));
+            if (r.has_after && r.region_volume_change_rel_max > 1e-10)
+                lines.push_back(fmt("**`%s` / %s: the volume of a region changed by %.3g (relative)**",
+                                    row.c->name.c_str(), vn, r.region_volume_change_rel_max));
+            if (r.has_after && r.after.inverted > 0)
+                lines.push_back(fmt("**`%s` / %s: %d inverted tets after, %d before**", row.c->name.c_str(), vn,
+                                    r.after.inverted, r.before.inverted));
             if (std::strcmp(r.status, "ok") != 0 && !(all_unsupported[m] && !std::strcmp(r.status, "unsupported")))
-                lines.push_back("`" + row.c->name + "` / " + opt.modes[m].name + ": " + r.status + " in " + r.where +
-                                ": " + r.message);
+                lines.push_back("`" + row.c->name + "` / " + vars[m].name + ": " + r.status + " in " + r.where + ": " +
+                                r.message);
+            // A variant with connectivity changes against the smoothing-only
+            // variant of the same mode: is the boundary much farther away?
+            if (!r.has_after || ops[m] == BODT_OP_SMOOTH || !std::isfinite(r.hausdorff_rel)) continue;
+            for (size_t k = 0; k < row.runs.size() && k < nvar; ++k) {
+                const RunResult& s = row.runs[k];
+                if (k == m || vars[k].mode != vars[m].mode || ops[k] != BODT_OP_SMOOTH || !s.has_after ||
+                    !std::isfinite(s.hausdorff_rel))
+                    continue;
+                if (r.hausdorff_rel > 1.25 * s.hausdorff_rel && r.hausdorff_rel - s.hausdorff_rel > 1e-4)
+                    lines.push_back(fmt("**`%s` / %s: H %.3g %% against %.3g %% for %s**", row.c->name.c_str(), vn,
+                                        r.hausdorff_rel * 100.0, s.hausdorff_rel * 100.0, vars[k].name.c_str()));
+            }
         }
     }
-    for (size_t m = 0; m < opt.modes.size(); ++m)
-        if (all_unsupported[m] && !rows.empty() && !rows[0].runs.empty())
-            lines.push_back(fmt("mode %s (%d): unsupported by this library (bodt_set_mode: %s)", opt.modes[m].name,
-                                opt.modes[m].value, rows[0].runs[m].message));
+    for (size_t m = 0; m < nvar; ++m)
+        if (all_unsupported[m] && !rows.empty() && m < rows[0].runs.size())
+            lines.push_back(fmt("variant %s (mode %d, ops %s): unsupported by this library (%s: %s)",
+                                vars[m].name.c_str(), vars[m].mode, ops_string(vars[m].ops).c_str(),
+                                rows[0].runs[m].where, rows[0].runs[m].message));
     for (const auto& n : notes) lines.push_back(n);
     if (!lines.empty()) {
         md += "\nNotes:\n\n";
@@ -859,29 +1156,32 @@ int main(int argc, char** argv) {
                      c.kind.c_str(), prep_s, ok ? "" : ": cannot be made: ", ok ? "" : err.c_str());
         if (!ok) {
             row.prep_error = err;
-            for (const Mode& m : opt.modes) {
+            for (const Variant& v : opt.variants) {
                 RunResult r = empty_result();
                 SET(r.status, "error");
                 SET(r.where, "making the case");
                 SET(r.message, err);
                 row.runs.push_back(r);
-                std::fprintf(json, "%s\n", result_json(c, pm.note, m, r, opt).c_str());
+                std::fprintf(json, "%s\n", result_json(c, pm.note, v, r, opt).c_str());
             }
             std::fflush(json);
             rows.push_back(std::move(row));
             continue;
         }
-        for (const Mode& m : opt.modes) {
-            const RunResult r = run_isolated(c, pm, m, opt);
+        for (const Variant& v : opt.variants) {
+            const RunResult r = run_isolated(c, pm, v, opt);
             row.runs.push_back(r);
-            std::fprintf(json, "%s\n", result_json(c, pm.note, m, r, opt).c_str());
+            std::fprintf(json, "%s\n", result_json(c, pm.note, v, r, opt).c_str());
             std::fflush(json);
             if (r.has_after)
-                std::fprintf(stderr, "    %-10s %-7s %2d steps %8.3f s  min %6.2f -> %6.2f  max %6.2f -> %6.2f  H %.2e\n",
-                             m.name, r.status, r.steps_done, r.time_s, r.before.min_dihedral, r.after.min_dihedral,
-                             r.before.max_dihedral, r.after.max_dihedral, r.hausdorff_rel);
+                std::fprintf(stderr,
+                             "    %-11s %-7s %2d steps %8.3f s  min %6.2f -> %6.2f  max %6.2f -> %6.2f  H %.2e"
+                             "  V %d -> %d  flips %" PRId64 " ins %" PRId64 " coll %" PRId64 "\n",
+                             v.name.c_str(), r.status, r.steps_done, r.time_s, r.before.min_dihedral,
+                             r.after.min_dihedral, r.before.max_dihedral, r.after.max_dihedral, r.hausdorff_rel,
+                             r.before.vertices, r.after.vertices, r.flips, r.inserted, r.collapsed);
             else
-                std::fprintf(stderr, "    %-10s %s\n", m.name, r.status);
+                std::fprintf(stderr, "    %-11s %s\n", v.name.c_str(), r.status);
         }
         rows.push_back(std::move(row));
         // the decompressed copy is not needed any more

@@ -221,8 +221,9 @@ BODT_API int bodt_mesh_get_vertex_classes(const bodt_mesh *mesh,
  * Vertex parents: value(v) = sum of weights[k] * value(parents[k]) for k in
  * [offsets[v], offsets[v+1]), parents being input vertices (in the caller's
  * base), weights summing to 1: an input vertex is its own single parent; a
- * made vertex interpolates the input where it was made (later moves of any
- * vertex are not tracked, as with smoothing).  offsets has nverts + 1
+ * made vertex interpolates the mesh as it was before the operation that
+ * made it, at the place where that operation left it (moves by later
+ * smoothing are not tracked, as for the input vertices).  offsets has nverts + 1
  * entries counted from 0; bodt_mesh_get_parent_count gives offsets[nverts].
  */
 BODT_API int bodt_mesh_get_parent_count(const bodt_mesh *mesh, int64_t *count);
@@ -358,8 +359,10 @@ enum bodt_param {
 /*
  * Operations a step may do (BODT_PARAM_OPS).  Each connectivity change is
  * kept only if it raises the worst dihedral angle of the tets it touches
- * (with the new vertices relocated by ODT): a step never makes the mesh's
- * worst tet worse.
+ * (after a few guarded ODT moves of the new vertices and, with
+ * BODT_OP_SMOOTH, of the bad tet's own interior vertices): a step never
+ * makes the mesh's worst tet worse.  Without BODT_OP_SMOOTH no input vertex
+ * moves.
  */
 enum bodt_op {
     BODT_OP_SMOOTH = 1,   /* move vertices (the mode's smoothing)           */
@@ -414,8 +417,9 @@ BODT_API int bodt_step(bodt_mesh *mesh, bodt_step_report *report);
 typedef int (*bodt_step_callback)(const bodt_step_report *report,
                                   void *user_data);
 
-/* Steps until the largest move is below BODT_PARAM_TOLERANCE (converged) or
- * max_steps were done.  callback may be NULL. */
+/* Steps until a step leaves the connectivity as it was and moves no vertex
+ * further than BODT_PARAM_TOLERANCE (converged), or max_steps were done.
+ * callback may be NULL. */
 BODT_API int bodt_run(bodt_mesh *mesh, int32_t max_steps,
                       bodt_step_callback callback, void *user_data);
 

@@ -580,7 +580,8 @@ int bodt_run(bodt_mesh* mesh, int32_t max_steps, bodt_step_callback callback, vo
                 if (callback(&report, user_data) != 0)
                     throw Error(BODT_ERR_CANCELLED, "cancelled by the callback after step " + std::to_string(r.step));
             }
-            if (r.max_move <= mesh->improver.params().tolerance * scale) break;
+            const bool reconnected = r.flips + r.vertices_inserted + r.edges_collapsed > 0;
+            if (!reconnected && r.max_move <= mesh->improver.params().tolerance * scale) break;
         }
     });
 }

@@ -19,7 +19,7 @@ const char* kUsageText =
     "Improve the quality of tetrahedral meshes for finite-element analysis.\n"
     "\n"
     "commands:\n"
-    "  improve IN OUT [--mode MODE] [--iterations N]\n"
+    "  improve IN OUT [--mode MODE] [--iterations N] [--ops LIST] [--keep-surface]\n"
     "      Read IN, improve it, write OUT, and print the quality before and after.\n"
     "      IN may be a tet mesh (.mesh, .node, .ele) or, when bodt is built with\n"
     "      TetGen, a closed surface (.off, .stl, .ply) or PLC (.poly), which is first\n"
@@ -33,7 +33,21 @@ const char* kUsageText =
     "                        laplace: interior vertices to their neighbours' mean\n"
     "                      Boundary moves keep the volume; no mode inverts a tet.\n"
     "      --iterations N    at most N improvement steps (default 20); stops\n"
-    "                        earlier when the vertices stop moving\n"
+    "                        earlier when the vertices stop moving and the\n"
+    "                        connectivity stops changing\n"
+    "      --ops LIST        what a step does, comma-separated:\n"
+    "                          smooth: move vertices (the mode's smoothing)\n"
+    "                          flip: edge removal and 2-3 flips around bad tets\n"
+    "                          insert: split spades, caps and slivers\n"
+    "                          collapse: collapse the short edge of bad tets\n"
+    "                        or default: smooth,flip,insert in mode bodt, smooth\n"
+    "                        in the other modes.  A change of connectivity is\n"
+    "                        kept only if it makes the worst tets it touches\n"
+    "                        better; the surface keeps its shape.\n"
+    "      --keep-surface    leave every boundary and interface triangle as it is\n"
+    "                        (odt and laplace always do)\n"
+    "      The summary gives the steps done and the flips, inserted vertices and\n"
+    "      collapsed edges in all.\n"
     "  quality MESH [--json]\n"
     "      Print the quality of MESH: dihedral angles, stretch, inverted tets,\n"
     "      volume, counts.  --json prints one JSON object.\n"
@@ -149,16 +163,71 @@ struct ModeName {
 constexpr ModeName kModes[] = {
     {"bodt", BODT_MODE_BODT}, {"bodt-basic", BODT_MODE_BODT_BASIC}, {"odt", BODT_MODE_ODT}, {"laplace", BODT_MODE_LAPLACE}};
 
+struct OpName {
+    const char* name;
+    int op;
+};
+constexpr OpName kOps[] = {
+    {"smooth", BODT_OP_SMOOTH}, {"flip", BODT_OP_FLIP}, {"insert", BODT_OP_INSERT}, {"collapse", BODT_OP_COLLAPSE}};
+
+// Parses --ops: "default", or a comma-separated list of kOps names.  False
+// (with `error` set) for anything else.
+bool parse_ops(const std::string& value, int32_t& ops, std::string& error) {
+    if (value == "default") {
+        ops = BODT_OPS_MODE_DEFAULT;
+        return true;
+    }
+    ops = 0;
+    size_t start = 0;
+    while (true) {
+        const size_t comma = value.find(',', start);
+        const std::string item = value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        const OpName* found = nullptr;
+        for (const OpName& o : kOps)
+            if (item == o.name) found = &o;
+        if (!found) {
+            error = "--ops: unknown operation '" + item +
+                    "' (known: smooth, flip, insert, collapse, separated by commas; or default alone)";
+            return false;
+        }
+        ops |= found->op;
+        if (comma == std::string::npos) return true;
+        start = comma + 1;
+    }
+}
+
+// Totals over the steps of bodt_run, from its callback.
+struct RunTotals {
+    int32_t steps = 0;
+    int64_t flips = 0, inserted = 0, collapsed = 0;
+};
+
+int count_step(const bodt_step_report* r, void* user) {
+    RunTotals& t = *static_cast<RunTotals*>(user);
+    ++t.steps;
+    t.flips += r->flips;
+    t.inserted += r->vertices_inserted;
+    t.collapsed += r->edges_collapsed;
+    return 0;
+}
+
 int cmd_improve(const std::vector<std::string>& args) {
     std::vector<std::string> files;
     int mode = BODT_MODE_BODT;
     long iterations = 20;
+    int32_t ops = BODT_OPS_MODE_DEFAULT;
+    bool keep_surface = false;
     for (size_t k = 0; k < args.size(); ++k) {
         const std::string& a = args[k];
-        if (a == "--mode" || a == "--iterations") {
+        if (a == "--keep-surface") {
+            keep_surface = true;
+        } else if (a == "--mode" || a == "--iterations" || a == "--ops") {
             if (k + 1 == args.size()) return usage_error(a + " needs a value");
             const std::string value = args[++k];
-            if (a == "--mode") {
+            if (a == "--ops") {
+                std::string error;
+                if (!parse_ops(value, ops, error)) return usage_error(error);
+            } else if (a == "--mode") {
                 const ModeName* found = nullptr;
                 for (const ModeName& m : kModes)
                     if (value == m.name) found = &m;
@@ -181,13 +250,19 @@ int cmd_improve(const std::vector<std::string>& args) {
     if (!load(files[0], &mesh)) return kInput;
     const bodt_quality before = measure(mesh);
     int status = bodt_set_mode(mesh, mode);
-    if (status == BODT_OK) status = bodt_run(mesh, static_cast<int32_t>(iterations), nullptr, nullptr);
+    if (status == BODT_OK) status = bodt_set_param_int(mesh, BODT_PARAM_OPS, ops);
+    if (status == BODT_OK && keep_surface) status = bodt_set_param_int(mesh, BODT_PARAM_KEEP_SURFACE, 1);
+    RunTotals totals;
+    if (status == BODT_OK) status = bodt_run(mesh, static_cast<int32_t>(iterations), count_step, &totals);
     if (status != BODT_OK) {
         std::fprintf(stderr, "bodt: improve: %s: %s\n", bodt_status_string(status), bodt_mesh_last_error(mesh));
         bodt_mesh_destroy(mesh);
         return kImprove;
     }
     print_table(&before, measure(mesh));
+    std::printf("%d steps: %lld flips, %lld vertices inserted, %lld edges collapsed\n", totals.steps,
+                static_cast<long long>(totals.flips), static_cast<long long>(totals.inserted),
+                static_cast<long long>(totals.collapsed));
     status = bodt_mesh_write(mesh, files[1].c_str());
     if (status != BODT_OK) {
         std::fprintf(stderr, "bodt: %s: %s\n", bodt_status_string(status), bodt_mesh_last_error(mesh));

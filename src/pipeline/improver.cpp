@@ -113,6 +113,9 @@ void Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     settings.flip = bits & BODT_OP_FLIP;
     settings.insert = bits & BODT_OP_INSERT;
     settings.collapse = bits & BODT_OP_COLLAPSE;
+    // Without smoothing only the vertices an operation makes may move, and
+    // in the modes that keep the surface only interior ones do anyway.
+    settings.relocate_old = bits & BODT_OP_SMOOTH;
     EditableMesh editable(mesh, classes(mesh, surfaces));
     const TopologyCounts counts = improve_topology(editable, settings);
     if (!counts.changed()) return;

@@ -44,11 +44,14 @@ const Info& lookup(int key, Type want) {
     throw Error(BODT_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key));
 }
 
+std::string show(const Info& info, double value) {
+    return info.type == Type::Int ? std::to_string(static_cast<long long>(value)) : std::to_string(value);
+}
+
 void check_range(const Info& info, double value) {
     if (!(value >= info.lo && value <= info.hi))
-        throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(info.name) + " must be in [" + std::to_string(info.lo) +
-                                                   ", " + std::to_string(info.hi) + "], got " +
-                                                   std::to_string(value));
+        throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(info.name) + " must be in [" + show(info, info.lo) + ", " +
+                                                   show(info, info.hi) + "], got " + show(info, value));
 }
 
 // The member behind an int key (already looked up).

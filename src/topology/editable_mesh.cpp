@@ -211,6 +211,12 @@ void EditableMesh::move_vertex(int32_t v, const Vec3& p) {
     points_[v] = p;
 }
 
+void EditableMesh::set_parents(int32_t v, Parents parents) {
+    journal_.push_back({Change::SetParents, v, {}, 0, Vec3::Zero(), 0, false});
+    old_parents_.push_back(std::move(parents_[v]));
+    parents_[v] = std::move(parents);
+}
+
 int32_t EditableMesh::add_tet(const Tet& q, int32_t region, int32_t origin) {
     const int32_t t = tet_capacity();
     tets_.push_back(q);
@@ -271,6 +277,10 @@ void EditableMesh::rollback(size_t mark) {
                 vtets_.pop_back();
                 break;
             case Change::MoveVertex: points_[e.index] = e.old_point; break;
+            case Change::SetParents:
+                parents_[e.index] = std::move(old_parents_.back());
+                old_parents_.pop_back();
+                break;
             case Change::AddTet:
                 detach(e.index);
                 tets_.pop_back();

@@ -67,6 +67,8 @@ public:
     // ---- changes (all logged)
     int32_t add_vertex(const Vec3& p, VertexClass cls, Parents parents);
     void move_vertex(int32_t v, const Vec3& p);
+    // A made vertex's parents (input vertices are their own parent).
+    void set_parents(int32_t v, Parents parents);
     int32_t add_tet(const Tet& t, int32_t region, int32_t origin);
     void remove_tet(int32_t t);
     void set_marker(const FaceKey& f, int32_t marker);
@@ -80,10 +82,15 @@ public:
     size_t checkpoint() const { return journal_.size(); }
     void rollback(size_t mark);
     // Forgets the log: no rollback past this point.
-    void commit() { journal_.clear(); }
+    void commit() {
+        journal_.clear();
+        old_parents_.clear();
+    }
 
 private:
-    enum class Change : uint8_t { AddVertex, MoveVertex, AddTet, RemoveTet, SetMarker, EraseMarker, AddFeature, EraseFeature };
+    enum class Change : uint8_t {
+        AddVertex, MoveVertex, SetParents, AddTet, RemoveTet, SetMarker, EraseMarker, AddFeature, EraseFeature
+    };
     struct Entry {
         Change kind;
         int32_t index;      // vertex or tet
@@ -108,6 +115,7 @@ private:
     EdgeSet caller_features_;  // the caller's feature edges, kept in the output
     EdgeSet features_;         // every feature edge the classes came from, plus the caller's
     std::vector<Entry> journal_;
+    std::vector<Parents> old_parents_;  // SetParents entries, in order
     int32_t input_vertices_;
 };
 

@@ -4,6 +4,7 @@
 #include "topology/op_support.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace bodt {
@@ -148,22 +149,33 @@ std::vector<int32_t> bad_tets_by_quality(const EditableMesh& mesh, double bad_si
 // ones had); else rolls it back.  Tets that did not change are left out of
 // the comparison: an unrelated bad neighbour must not veto a fix.
 template <class Change>
-bool try_change(EditableMesh& mesh, int32_t t, const TopologyRules& rules, Change&& change) {
+bool try_change(EditableMesh& mesh, int32_t t, const TopologyRules& rules, bool move_old, Change&& change) {
     const Tet q = mesh.tet(t);
     std::vector<int32_t> involved(q.begin(), q.end());
     const std::vector<int32_t> region = region_of(mesh, involved);
     std::vector<TetPoints> shapes_before;
-    for (int32_t s : region) shapes_before.push_back(mesh.tet_points(s));
+    std::vector<Tet> quads_before;
+    for (int32_t s : region) {
+        shapes_before.push_back(mesh.tet_points(s));
+        quads_before.push_back(mesh.tet(s));
+    }
     const int32_t old_capacity = mesh.tet_capacity();
+    const int32_t old_vertices = mesh.num_vertices();
     const size_t mark = mesh.checkpoint();
     const std::vector<int32_t> made = change();
     if (made.empty()) {
         mesh.rollback(mark);
         return false;
     }
+    // The new vertices move (and, when the step smooths, the old ones involved).
+    std::vector<int32_t> fresh, movers;
+    for (int32_t v : made) (v >= old_vertices ? fresh : movers).push_back(v);
+    if (move_old) movers.insert(movers.end(), q.begin(), q.end());
+    else movers.clear();
+    movers.insert(movers.begin(), fresh.begin(), fresh.end());
     involved.insert(involved.end(), made.begin(), made.end());
     for (int round = 0; round < kRelocationRounds; ++round)
-        for (int32_t v : involved)
+        for (int32_t v : movers)
             if (!mesh.tets_of(v).empty()) relocate(mesh, v, rules);
     // A tet changed if it is gone, new, or has moved.
     double before = 1.0, after = 1.0;
@@ -187,9 +199,40 @@ bool try_change(EditableMesh& mesh, int32_t t, const TopologyRules& rules, Chang
         after = std::min(after, min_dihedral_sine(p));
         widen(range_after, p);
     }
-    if (after > before + kGain && (!rules.never_worse || within(range_after, range_before))) return true;
-    mesh.rollback(mark);
-    return false;
+    if (!(after > before + kGain && (!rules.never_worse || within(range_after, range_before)))) {
+        mesh.rollback(mark);
+        return false;
+    }
+    // A new vertex interpolates the mesh as it was, where the vertex ended.
+    for (int32_t v : fresh) {
+        if (mesh.tets_of(v).empty()) continue;
+        const Vec3 p = mesh.point(v);
+        size_t best = 0;
+        double best_depth = -1e300;
+        std::array<double, 4> lambda{}, best_lambda{};
+        for (size_t k = 0; k < shapes_before.size(); ++k) {
+            const TetPoints& s = shapes_before[k];
+            const double whole = signed_volume(s[0], s[1], s[2], s[3]);
+            for (int i = 0; i < 4; ++i) {
+                TetPoints x = s;
+                x[i] = p;
+                lambda[i] = signed_volume(x[0], x[1], x[2], x[3]) / whole;
+            }
+            const double depth = *std::min_element(lambda.begin(), lambda.end());
+            if (depth > best_depth) {
+                best_depth = depth;
+                best = k;
+                best_lambda = lambda;
+            }
+        }
+        double sum = 0.0;
+        for (double& l : best_lambda) sum += (l = std::max(l, 0.0));
+        for (double& l : best_lambda) l /= sum;
+        const Tet& o = quads_before[best];
+        mesh.set_parents(v, blend_parents(mesh, {o[0], o[1], o[2], o[3]},
+                                          {best_lambda[0], best_lambda[1], best_lambda[2], best_lambda[3]}));
+    }
+    return true;
 }
 
 }  // namespace
@@ -208,7 +251,7 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s) {
             const BadTet bad = classify_bad_tet(mesh.tet_points(t), s.bad_angle_deg);
             if (s.insert && (bad.kind == BadTetKind::Spade || bad.kind == BadTetKind::Cap || bad.kind == BadTetKind::Sliver)) {
                 int32_t made = 0;
-                if (try_change(mesh, t, s.rules, [&] {
+                if (try_change(mesh, t, s.rules, s.relocate_old, [&] {
                         const std::vector<int32_t> v = insert_for(mesh, t, bad, loose);
                         made = static_cast<int32_t>(v.size());
                         return v;
@@ -223,7 +266,7 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s) {
                         (p[kEdgeVertex[shortest][1]] - p[kEdgeVertex[shortest][0]]).squaredNorm())
                         shortest = e;
                 const Tet q = mesh.tet(t);
-                if (try_change(mesh, t, s.rules, [&] {
+                if (try_change(mesh, t, s.rules, s.relocate_old, [&] {
                         const int32_t kept = collapse_edge(mesh, q[kEdgeVertex[shortest][0]], q[kEdgeVertex[shortest][1]], loose, 0.0);
                         return kept >= 0 ? std::vector<int32_t>{kept} : std::vector<int32_t>{};
                     }))

@@ -15,6 +15,7 @@ struct TopologySettings {
     TopologyRules rules;
     double bad_angle_deg = 15.0;  // insertion and collapse work on tets with an angle outside [this, 180 - this]
     bool flip = true, insert = true, collapse = false;
+    bool relocate_old = true;  // an insertion also relocates the bad tet's vertices (the step smooths)
 };
 
 struct TopologyCounts {
