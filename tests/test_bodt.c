@@ -48,18 +48,6 @@
 
 static void destroy_mesh(void *p) { bodt_mesh_destroy(p); }
 
-static void free_test_mesh(void *p) {
-    tm_free(p);
-    free(p);
-}
-
-/* calloc registered with the teardown */
-static void *talloc(size_t bytes) {
-    void *p = calloc(bytes ? bytes : 1, 1);
-    assert_non_null(p);
-    return cleanup_add(p, free);
-}
-
 typedef struct shape {
     test_mesh *m;
     unsigned char *axes; /* free axes per vertex (bit a: free along axis a) */
@@ -69,7 +57,7 @@ typedef struct shape {
 static shape make_sliding(int n, double size, tm_cube_filter keep, tm_cube_region region, double jitter,
                           double boundary_jitter, uint64_t seed) {
     shape s;
-    s.m = cleanup_add(calloc(1, sizeof *s.m), free_test_mesh);
+    s.m = cleanup_add(calloc(1, sizeof *s.m), cleanup_free_test_mesh);
     assert_non_null(s.m);
     const int st = tm_make_cubes_sliding(s.m, n, size, keep, region, NULL, jitter, boundary_jitter, seed, &s.axes,
                                          &s.regions);
@@ -92,13 +80,13 @@ static bodt_mesh *create(const test_mesh *m, int mode) {
 }
 
 static double *get_xyz(const bodt_mesh *h, int32_t nv) {
-    double *xyz = talloc(3 * (size_t)nv * sizeof *xyz);
+    double *xyz = cleanup_calloc(3 * (size_t)nv * sizeof *xyz);
     assert_int_equal(bodt_mesh_get_vertices(h, xyz, 3 * (size_t)nv), BODT_OK);
     return xyz;
 }
 
 static int32_t *get_classes(const bodt_mesh *h, int32_t nv) {
-    int32_t *c = talloc((size_t)nv * sizeof *c);
+    int32_t *c = cleanup_calloc((size_t)nv * sizeof *c);
     assert_int_equal(bodt_mesh_get_vertex_classes(h, c, (size_t)nv), BODT_OK);
     return c;
 }
@@ -407,7 +395,7 @@ static void test_user_feature_line(void **state) {
  * list stays. */
 static void test_feature_edges_refused(void **state) {
     (void)state;
-    test_mesh *m = cleanup_add(calloc(1, sizeof *m), free_test_mesh);
+    test_mesh *m = cleanup_add(calloc(1, sizeof *m), cleanup_free_test_mesh);
     assert_int_equal(tm_make_box(m, 3, 0.0, 1), 0);
     bodt_mesh *h = create(m, BODT_MODE_BODT);
     const int32_t good[2] = {grid_vertex(3, 0, 0, 0), grid_vertex(3, 1, 1, 0)}; /* a face diagonal */
@@ -431,7 +419,7 @@ static void test_feature_edges_refused(void **state) {
 
     /* A mesh edge joining two boundary vertices through the inside: the main
      * diagonal of a single cube. */
-    test_mesh *c = cleanup_add(calloc(1, sizeof *c), free_test_mesh);
+    test_mesh *c = cleanup_add(calloc(1, sizeof *c), cleanup_free_test_mesh);
     assert_int_equal(tm_make_box(c, 1, 0.0, 1), 0);
     bodt_mesh *hc = create(c, BODT_MODE_BODT);
     const int32_t diagonal[2] = {0, 7};
@@ -536,7 +524,7 @@ static void test_classes_box(void **state) {
 /* A cylinder of radius 1 and height 2: a 6^3 Kuhn box on [0, 2]^3 mapped
  * by the elliptical grid mapping. */
 static test_mesh *make_cylinder(void) {
-    test_mesh *m = cleanup_add(calloc(1, sizeof *m), free_test_mesh);
+    test_mesh *m = cleanup_add(calloc(1, sizeof *m), cleanup_free_test_mesh);
     assert_non_null(m);
     assert_int_equal(tm_make_cubes(m, 6, 2.0, NULL, NULL, 0.0, 1), 0);
     assert_int_equal(tm_map_square_to_disk(m), 0);
@@ -625,7 +613,7 @@ static void test_cylinder_caps_stay_flat(void **state) {
  * angle and ratios no feature is found, every boundary vertex is SURFACE. */
 static void test_classes_ball(void **state) {
     (void)state;
-    test_mesh *m = cleanup_add(calloc(1, sizeof *m), free_test_mesh);
+    test_mesh *m = cleanup_add(calloc(1, sizeof *m), cleanup_free_test_mesh);
     assert_int_equal(tm_make_cubes(m, 6, 2.0, NULL, NULL, 0.0, 1), 0);
     assert_int_equal(tm_map_cube_to_ball(m), 0);
     bodt_mesh *h = create(m, BODT_MODE_BODT);
@@ -733,7 +721,7 @@ static void test_robustness(void **state) {
         const double size = 1.0 + mesh;
         /* strong jitter, half of the meshes graded along one axis (thin
          * tets; planes stay planes): the first seed that inverts no tet */
-        test_mesh *m = cleanup_add(calloc(1, sizeof *m), free_test_mesh);
+        test_mesh *m = cleanup_add(calloc(1, sizeof *m), cleanup_free_test_mesh);
         int32_t *regions = NULL;
         for (uint64_t seed = 1000 + 100 * (uint64_t)mesh;; ++seed) {
             const int st = tm_make_cubes_sliding(m, 3, size, keep, region, NULL, 0.3, 0.3, seed, NULL, &regions);
@@ -886,7 +874,7 @@ static unsigned char *non_manifold_vertices(const test_mesh *m, const int32_t *r
             f[k].opposite = f[k + 1].tet;
             f[k + 1].opposite = f[k].tet;
         }
-    unsigned char *bad = talloc((size_t)m->nverts);
+    unsigned char *bad = cleanup_calloc((size_t)m->nverts);
     int32_t rmax = 0;
     for (int32_t t = 0; t < m->ntets; ++t) rmax = regions[t] > rmax ? regions[t] : rmax;
     for (int32_t region = 0; region <= rmax; ++region)
@@ -974,7 +962,7 @@ static void test_checkerboard_regions(void **state) {
     const shape s = make_sliding(4, 1.0, NULL, NULL, 0.25, 0.25, 81);
     const test_mesh *m = s.m;
     /* the independent check finds nothing on one region */
-    int32_t *regions = talloc((size_t)m->ntets * sizeof *regions);
+    int32_t *regions = cleanup_calloc((size_t)m->ntets * sizeof *regions);
     const unsigned char *none = non_manifold_vertices(m, regions);
     for (int32_t v = 0; v < m->nverts; ++v) assert_int_equal(none[v], 0);
     for (int32_t t = 0; t < m->ntets; ++t) regions[t] = t % 2;

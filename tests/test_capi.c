@@ -736,15 +736,10 @@ static void test_create_inverted(void **state) {
  * wrongly ordered tet with a face on the boundary is then refused with "the
  * boundary is not a manifold surface at edge ...". */
 static void destroy_mesh(void *h) { bodt_mesh_destroy(h); }
-static void free_test_mesh(void *m) {
-    tm_free(m);
-    free(m);
-}
-
 static void test_accept_inverted_boundary_tet(void **state) {
     (void)state;
     /* everything is released by cleanup_teardown, also after a failure */
-    test_mesh *m = cleanup_add(calloc(1, sizeof *m), free_test_mesh);
+    test_mesh *m = cleanup_add(calloc(1, sizeof *m), cleanup_free_test_mesh);
     assert_int_equal(tm_make_box(m, 3, 0.15, 9), 0);
     int32_t *t = cleanup_add(tets_in_base(m, 0), free);
     swap_last_two(t, 4);

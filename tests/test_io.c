@@ -194,11 +194,6 @@ static void test_tetgen_roundtrip(void **state) {
 /* BUG (see the report): fixed vertices do not survive a TetGen round trip;
  * the writer does not write them anywhere. */
 static void destroy_mesh(void *h) { bodt_mesh_destroy(h); }
-static void free_test_mesh(void *m) {
-    tm_free(m);
-    free(m);
-}
-
 /* TetGen files have no notion of fixed vertices (documented in bodt.h and
  * src/io/tetgen_files.cpp): a round trip keeps everything else and reads
  * back no fixed vertex, rather than inventing a column other tools would
@@ -206,7 +201,7 @@ static void free_test_mesh(void *m) {
 static void test_tetgen_roundtrip_fixed_vertices(void **state) {
     (void)state;
     /* everything is released by cleanup_teardown, also after a failure */
-    test_mesh *m = cleanup_add(calloc(1, sizeof *m), free_test_mesh);
+    test_mesh *m = cleanup_add(calloc(1, sizeof *m), cleanup_free_test_mesh);
     bodt_mesh *h = cleanup_add(decorated_box(m), destroy_mesh);
     const char *node = path_of("roundtrip_fixed.node");
     assert_int_equal(bodt_mesh_write(h, node), BODT_OK);

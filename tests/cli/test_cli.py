@@ -3,8 +3,8 @@
 
     test_cli.py --bodt PATH --data DIR --out DIR CASE
 
-CASE is one of quality_json, improve, exit_codes, improve_surface (with
-TetGen), surface_without_tetgen (without).  Every value checked comes from
+CASE is one of quality_json, improve, improve_ops, exit_codes,
+improve_surface (with TetGen), surface_without_tetgen (without).  Every value checked comes from
 running the command; expected mesh quality is recomputed here from the mesh
 file with plain Python (no library code).  Exits 0 on success, 1 on the
 first failed check.
@@ -13,6 +13,7 @@ import argparse
 import json
 import math
 import os
+import random
 import re
 import subprocess
 import sys
@@ -218,6 +219,195 @@ def case_improve(args):
               "the .ele read back: %r" % q)
 
 
+def read_medit_triangles(path):
+    """The Triangles of a Medit file as a sorted list of (sorted 0-based
+    vertex triple, ref)."""
+    tokens = []
+    with open(path) as f:
+        for line in f:
+            tokens += line.split("#", 1)[0].split()
+    k = tokens.index("Triangles") + 1 if "Triangles" in tokens else len(tokens)
+    out = []
+    if k < len(tokens):
+        n = int(tokens[k]); k += 1
+        for _ in range(n):
+            out.append((tuple(sorted(int(x) - 1 for x in tokens[k:k + 3])), int(tokens[k + 3]))); k += 4
+    return sorted(out)
+
+
+SUMMARY = re.compile(r"^(\d+) steps: (\d+) flips, (\d+) vertices inserted, (\d+) edges collapsed$", re.M)
+
+
+def improve_summary(args, *argv):
+    """Runs bodt improve; (exit code, (steps, flips, inserted, collapsed) or None, stdout, stderr)."""
+    code, out, err = run(args.bodt, "improve", *argv)
+    m = SUMMARY.search(out)
+    return code, tuple(int(x) for x in m.groups()) if m else None, out, err
+
+
+def write_jittered_box(path, n, size, jitter, seed):
+    """The box [0, size]^3 in n^3 cubes of six Kuhn tets each, every grid
+    coordinate strictly inside (0, size) moved by up to jitter * h (so
+    boundary vertices stay on their sides, edges and corners), from the
+    first seed from `seed` on that inverts no tet."""
+    h = size / n
+    idx = lambda i, j, k: (k * (n + 1) + j) * (n + 1) + i
+    kuhn = [(0, 1, 3, 7), (0, 1, 5, 7), (0, 2, 3, 7), (0, 2, 6, 7), (0, 4, 5, 7), (0, 4, 6, 7)]
+    grid = [(i, j, k) for k in range(n + 1) for j in range(n + 1) for i in range(n + 1)]
+    tets = []
+    for k in range(n):
+        for j in range(n):
+            for i in range(n):
+                c = [idx(i + (b & 1), j + (b >> 1 & 1), k + (b >> 2 & 1)) for b in range(8)]
+                for q in kuhn:
+                    t = [c[x] for x in q]
+                    p = [tuple(h * g for g in grid[v]) for v in t]
+                    if dot(sub(p[1], p[0]), cross(sub(p[2], p[0]), sub(p[3], p[0]))) < 0:
+                        t[0], t[1] = t[1], t[0]
+                    tets.append(t)
+    for s in range(seed, seed + 200):
+        rng = random.Random(s)
+        pts = [tuple(h * g + (rng.uniform(-1.0, 1.0) * jitter * h if 0 < g < n else 0.0) for g in gp) for gp in grid]
+        if all(dot(sub(pts[t[1]], pts[t[0]]), cross(sub(pts[t[2]], pts[t[0]]), sub(pts[t[3]], pts[t[0]]))) > 0
+               for t in tets):
+            break
+    else:
+        raise RuntimeError("no seed gave a valid jittered box")
+    with open(path, "w") as f:
+        f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % len(pts))
+        for p in pts:
+            f.write("%.17g %.17g %.17g 0\n" % p)
+        f.write("Tetrahedra\n%d\n" % len(tets))
+        for t in tets:
+            f.write("%d %d %d %d 1\n" % tuple(v + 1 for v in t))
+        f.write("End\n")
+
+
+def check_valid_box(path, what, size=2.0):
+    """Every tet of the Medit file positive, volume size^3 (the box [0, size]^3)."""
+    q = quality_of(path)
+    check(q["stretch_min"] > 0.0, "%s: a tet is inverted or flat (min stretch %r)" % (what, q["stretch_min"]))
+    check(abs(q["volume"] - size ** 3) <= 1e-12 * size ** 3, "%s: volume %r" % (what, q["volume"]))
+    return q
+
+
+def case_improve_ops(args):
+    """--ops and --keep-surface on box2.mesh with its centre vertex pushed
+    towards the top face (tets of 3 degrees; flips have work to do)."""
+    os.makedirs(args.out, exist_ok=True)
+    with open(os.path.join(args.data, "box2.mesh")) as f:
+        text = f.read()
+    check("\n1.25 0.875 1.125 0\n" in text, "box2.mesh does not have its centre vertex line")
+    src = os.path.join(args.out, "box2_pushed.mesh")
+    with open(src, "w") as f:
+        f.write(text.replace("\n1.25 0.875 1.125 0\n", "\n1 1 1.9 0\n"))
+    p0, t0 = read_medit(src)
+    q0 = check_valid_box(src, "the input")
+    faces0 = None  # the boundary triangles bodt writes for the input connectivity
+
+    # smoothing only: the connectivity stays
+    dst = os.path.join(args.out, "box2_ops_smooth.mesh")
+    code, summary, out, err = improve_summary(args, src, dst, "--ops", "smooth")
+    check(code == 0, "--ops smooth exited %d: %s" % (code, err))
+    check(summary is not None, "--ops smooth: no summary line in %r" % out)
+    if summary:
+        check(summary[0] >= 1 and summary[1:] == (0, 0, 0), "--ops smooth: summary %r" % (summary,))
+    check("before" in out and "after" in out and ("wrote " + dst) in out, "--ops smooth output: %r" % out)
+    if os.path.exists(dst):
+        p1, t1 = read_medit(dst)
+        check(t1 == t0, "--ops smooth changed the tets")
+        faces0 = read_medit_triangles(dst)
+        check(len(faces0) == 50, "--ops smooth wrote %d triangles, expected 50 (48 + 2)" % len(faces0))
+        check(p1[13] != p0[13], "--ops smooth did not move the centre vertex")
+        q1 = check_valid_box(dst, "--ops smooth")
+        check(q1["min_dihedral"] > q0["min_dihedral"], "--ops smooth: min dihedral %r -> %r" %
+              (q0["min_dihedral"], q1["min_dihedral"]))
+
+    # flips without smoothing: the tets change, nothing moves, and the
+    # summary says how
+    dst = os.path.join(args.out, "box2_ops_flip.mesh")
+    code, summary, out, err = improve_summary(args, src, dst, "--ops", "flip,insert")
+    check(code == 0, "--ops flip,insert exited %d: %s" % (code, err))
+    check(summary is not None, "--ops flip,insert: no summary line in %r" % out)
+    if summary and os.path.exists(dst):
+        p1, t1 = read_medit(dst)
+        steps, flips, inserted, collapsed = summary
+        check(flips > 0, "--ops flip,insert: %d flips" % flips)
+        check(collapsed == 0, "--ops flip,insert: %d collapsed" % collapsed)
+        check(len(p1) == len(p0) + inserted, "--ops flip,insert: %d vertices, %d + %d inserted" %
+              (len(p1), len(p0), inserted))
+        check(sorted(tuple(sorted(t)) for t in t1) != sorted(tuple(sorted(t)) for t in t0),
+              "--ops flip,insert reported %d flips but the tets are the same" % flips)
+        check(p1[:len(p0)] == p0, "--ops flip,insert moved input vertices")
+        q1 = check_valid_box(dst, "--ops flip,insert")
+        check(q1["max_dihedral"] <= q0["max_dihedral"] + 1e-9 and q1["min_dihedral"] >= q0["min_dihedral"] - 1e-9,
+              "--ops flip,insert: dihedral range [%r, %r] -> [%r, %r]" %
+              (q0["min_dihedral"], q0["max_dihedral"], q1["min_dihedral"], q1["max_dihedral"]))
+
+    # all three with the surface kept: the boundary triangles are those of
+    # the input, with their markers
+    for ops in ("smooth,flip,insert", "default", "flip,insert,collapse,smooth"):
+        dst = os.path.join(args.out, "box2_ops_keep.mesh")
+        if os.path.exists(dst):
+            os.remove(dst)
+        code, summary, out, err = improve_summary(args, src, dst, "--ops", ops, "--keep-surface", "--iterations", "10")
+        check(code == 0, "--ops %s --keep-surface exited %d: %s" % (ops, code, err))
+        check(summary is not None and 1 <= summary[0] <= 10, "--ops %s --keep-surface: summary %r" % (ops, summary))
+        if not os.path.exists(dst):
+            check(False, "%s not written" % dst)
+            continue
+        check_valid_box(dst, "--ops %s --keep-surface" % ops)
+        check(read_medit_triangles(dst) == faces0, "--ops %s --keep-surface changed the boundary triangles" % ops)
+
+    # a jittered 4 x 4 x 4 box, where flips and insertion do reach the
+    # surface unless --keep-surface says no
+    src = os.path.join(args.out, "box4_jittered.mesh")
+    write_jittered_box(src, 4, 2.0, 0.4, 1)
+    check_valid_box(src, "the jittered box")
+    base = os.path.join(args.out, "box4_base.mesh")
+    code, out, err = run(args.bodt, "improve", src, base, "--ops", "smooth", "--iterations", "1")
+    check(code == 0, "jittered box, --ops smooth: exit %d: %s" % (code, err))
+    changed = {}
+    for keep in (False, True):
+        dst = os.path.join(args.out, "box4_keep.mesh" if keep else "box4_flip.mesh")
+        extra = ["--keep-surface"] if keep else []
+        code, summary, out, err = improve_summary(args, src, dst, "--ops", "flip,insert", *extra)
+        what = "jittered box, --ops flip,insert" + (" --keep-surface" if keep else "")
+        check(code == 0, "%s: exit %d: %s" % (what, code, err))
+        if code != 0 or summary is None or not os.path.exists(base):
+            check(False, "%s: no result (%r)" % (what, out))
+            continue
+        check(summary[1] > 0 and summary[3] == 0, "%s: summary %r, expected flips, no collapse" % (what, summary))
+        pts, _ = read_medit(dst)
+        check(len(pts) == 125 + summary[2], "%s: %d vertices, 125 + %d inserted" % (what, len(pts), summary[2]))
+        check_valid_box(dst, what)
+        tris = read_medit_triangles(dst)
+        changed[keep] = tris != read_medit_triangles(base)
+        # every boundary triangle on one side of the box
+        for tri, ref in tris:
+            on_side = any(all(abs(pts[v][a] - c) <= 1e-12 for v in tri) for a in range(3) for c in (0.0, 2.0))
+            if not check(on_side, "%s: triangle %r is on no side of the box" % (what, tri)):
+                break
+    check(changed.get(False) is True, "without --keep-surface the surface did not change")
+    check(changed.get(True) is False, "--keep-surface changed the boundary triangles")
+
+    # refused: exit status 1 (usage), nothing written
+    dst = os.path.join(args.out, "box2_ops_refused.mesh")
+    if os.path.exists(dst):
+        os.remove(dst)
+    for bad in (["--ops", "bogus"], ["--ops", ""], ["--ops", "smooth,,flip"], ["--ops", "smooth,"],
+                ["--ops", "default,flip"], ["--ops", "Smooth"], ["--ops"], ["--keep-surface=1"]):
+        code, summary, out, err = improve_summary(args, src, dst, *bad)
+        check(code == 1, "improve %s: exit %d, expected 1 (usage)" % (" ".join(bad), code))
+        check(err.strip() != "", "improve %s: nothing on stderr" % " ".join(bad))
+    code, summary, out, err = improve_summary(args, src, dst, "--ops", "bogus")
+    check("bogus" in err, "the unknown operation is not named: %r" % err)
+    check(not os.path.exists(dst), "a refused --ops wrote %s" % dst)
+    # --help documents the options
+    code, out, err = run(args.bodt, "--help")
+    check(code == 0 and "--ops LIST" in out and "--keep-surface" in out, "--help does not document --ops: %r" % out)
+
+
 def case_exit_codes(args):
     os.makedirs(args.out, exist_ok=True)
     good = os.path.join(args.data, "box2.mesh")
@@ -320,7 +510,7 @@ def main():
     ap.add_argument("--bodt", required=True)
     ap.add_argument("--data", required=True)
     ap.add_argument("--out", required=True)
-    ap.add_argument("case", choices=["quality_json", "improve", "exit_codes", "improve_surface",
+    ap.add_argument("case", choices=["quality_json", "improve", "improve_ops", "exit_codes", "improve_surface",
                                      "surface_without_tetgen"])
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)

@@ -1,4 +1,5 @@
 #include "cleanup.h"
+#include "mesh_gen.h"
 
 #include <stdlib.h>
 
@@ -23,6 +24,17 @@ void *cleanup_add(void *p, void (*fn)(void *)) {
     g_entries[g_count].fn = fn;
     ++g_count;
     return p;
+}
+
+void *cleanup_calloc(size_t bytes) {
+    void *p = calloc(bytes ? bytes : 1, 1);
+    if (!p) abort();
+    return cleanup_add(p, free);
+}
+
+void cleanup_free_test_mesh(void *mesh) {
+    tm_free(mesh);
+    free(mesh);
 }
 
 int cleanup_teardown(void **state) {

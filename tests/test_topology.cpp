@@ -1,0 +1,1730 @@
+// test_topology: white-box tests of the topology core (links bodt_core).
+//
+// Every change is checked by check_valid() against the input, on the mesh
+// written out by EditableMesh::write_to: every tet positively oriented
+// (certified orient), every face in one or two tets by brute-force face
+// counting (two on opposite sides), build_topology succeeds and its
+// neighbours equal the brute-force matching, the Strict region surfaces
+// build, the EditableMesh's vertex->tet lists match its tets, the volume of
+// every region and the vector and scalar area of the surface faces per
+// (marker, region inside, region outside) stay as in the input (1e-12
+// relative), every face marker sits on a surface face and every caller
+// feature edge on a surface edge with their total length kept, tet_origin
+// names an input tet of the same region, new vertices' parents are input
+// vertices with positive weights summing to 1, and the input corners are
+// kept in place.
+//
+//   remove_edge_3_2      3 tets around an interior edge -> 2; each new tet's
+//                        origin holds its centroid
+//   flip_23              2 tets -> 3, and edge removal back gives the same
+//                        tets; refused across a region interface, on a
+//                        marked face and when the pair is not convex
+//   remove_edge_4_4      the octahedron's axis: the better of the two
+//                        diagonals, computed here
+//   remove_edge_optimal  rings of 3..7 tets: the result's worst sine is the
+//                        best over every triangulation of the ring polygon
+//                        (enumerated here); must_exceed just above refuses
+//   boundary_2_2         an edge on a flat base: flipped with its marker
+//                        carried; refused for differing markers, a bent
+//                        base, surface_may_change=false, a caller feature
+//                        edge, and a box edge (faces at 90 degrees)
+//   split_edge           interior, surface (point projected onto the edge),
+//                        caller feature edge (becomes two): parents
+//                        reproduce a linear field at the new vertex, pieces
+//                        keep the origin of the tet they were cut from;
+//                        refused on a surface edge without
+//                        surface_may_change and at an endpoint
+//   split_face           interior and marked surface face (projected, marker
+//                        on the three pieces); refusals
+//   parents_compose      splits of new vertices, across write_to and a new
+//                        EditableMesh: parents stay input vertices and
+//                        reproduce the linear field
+//   collapse             interior, surface and feature-line half-edge
+//                        collapses; refused for corners, fixed vertices, a
+//                        surface vertex into the inside, a feature vertex off
+//                        its line, and collapses that would invert;
+//                        collapse_edge's position rules
+//   two_regions          interface: flips and edge removal refused, splits
+//                        keep each region's volume
+//   rollback             nested checkpoints over random operations restore
+//                        the written mesh exactly
+//   random_operations    thousands of random operations on a jittered box,
+//                        a two-region box, an L-shape with a feature line on
+//                        a face and a box with a marked inner face (fin),
+//                        every invariant after every change, a rebuilt
+//                        EditableMesh now and then
+//   min_dihedral_sine    against dihedral_angles
+//   classify_bad_tet     sliver, cap, spade, short edge, good
+//   insertion            a sliver, a cap and a spade inside small meshes:
+//                        improve_topology (insert only) adds vertices, the
+//                        worst dihedral angle goes up, and the new vertices'
+//                        parents reproduce a linear field where they ended
+//   flip_pass            improve_topology (flips only) on a jittered box:
+//                        flips happen and the worst sine never goes down;
+//                        with surface_may_change=false no boundary face changes
+//   collapse_pass        improve_topology (collapse only) on a box with two
+//                        interior vertices pulled together: the short edge
+//                        goes and the worst sine goes up
+#include "common/error.hpp"
+#include "features/vertex_classes.hpp"
+#include "mesh/mesh_builder.hpp"
+#include "mesh/region_surfaces.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "quality/tet_geometry.hpp"
+#include "topology/bad_tets.hpp"
+#include "topology/editable_mesh.hpp"
+#include "topology/operations.hpp"
+#include "topology/topology_pass.hpp"
+
+#include "mesh_gen.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <random>
+#include <set>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "test_util.h"
+
+namespace {
+
+using bodt::EditableMesh;
+using bodt::FaceKey;
+using bodt::Tet;
+using bodt::TetMesh;
+using bodt::TopologyRules;
+using bodt::Vec3;
+
+constexpr double kDeg = 180.0 / M_PI;
+
+// The rules of the random test: the surface may change, a low stretch floor.
+TopologyRules loose_rules() { return TopologyRules{true, 1e-6, false}; }
+
+// ------------------------------------------------------------------ inputs
+
+// A mesh as the caller gives it, with regions, face markers, feature edges
+// and fixed vertices.
+struct Input {
+    std::vector<Vec3> points;
+    std::vector<Tet> tets;
+    std::vector<int32_t> regions;  // empty: one region
+    std::vector<std::pair<FaceKey, int32_t>> markers;
+    std::vector<std::array<int32_t, 2>> features;
+    std::vector<int32_t> fixed;
+};
+
+double orient6(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).dot((c - a).cross(d - a)); }
+
+// Adds tet (a, b, c, d), reordered to be positively oriented.
+void add_tet(Input& in, int32_t a, int32_t b, int32_t c, int32_t d) {
+    if (orient6(in.points[a], in.points[b], in.points[c], in.points[d]) < 0) std::swap(c, d);
+    in.tets.push_back({a, b, c, d});
+}
+
+Input from_test_mesh(const test_mesh& m, const int32_t* regions) {
+    Input in;
+    for (int32_t v = 0; v < m.nverts; ++v) in.points.emplace_back(m.xyz[3 * v], m.xyz[3 * v + 1], m.xyz[3 * v + 2]);
+    for (int32_t t = 0; t < m.ntets; ++t) in.tets.push_back({m.tets[4 * t], m.tets[4 * t + 1], m.tets[4 * t + 2], m.tets[4 * t + 3]});
+    if (regions) in.regions.assign(regions, regions + m.ntets);
+    return in;
+}
+
+// Every face of the input's tets whose three vertices satisfy `on`, marked.
+template <class On>
+void mark_faces(Input& in, int32_t marker, On on) {
+    std::set<FaceKey> done;
+    for (const Tet& q : in.tets)
+        for (const auto& f : bodt::kFaceVertex) {
+            const FaceKey k = FaceKey::of(q[f[0]], q[f[1]], q[f[2]]);
+            if (on(in.points[k.v[0]]) && on(in.points[k.v[1]]) && on(in.points[k.v[2]]) && done.insert(k).second)
+                in.markers.push_back({k, marker});
+        }
+}
+
+// Each side of the box [0, size]^3 its own marker: 1 (x = 0), 2 (x = size),
+// 3, 4 (y), 5, 6 (z).
+void mark_box_sides(Input& in, double size) {
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            const double at = side * size;
+            mark_faces(in, 1 + 2 * axis + side, [&](const Vec3& p) { return p[axis] == at; });
+        }
+}
+
+// The input built into a TetMesh and classified.
+struct Case {
+    TetMesh mesh;
+    bodt::VertexClasses classes;
+};
+
+Case make_case(const Input& in) {
+    std::vector<double> xyz;
+    for (const Vec3& p : in.points) xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
+    std::vector<int32_t> tets;
+    for (const Tet& q : in.tets) tets.insert(tets.end(), q.begin(), q.end());
+    bodt::MeshArrays a;
+    a.nverts = static_cast<int32_t>(in.points.size());
+    a.xyz = xyz.data();
+    a.ntets = static_cast<int32_t>(in.tets.size());
+    a.tets = tets.data();
+    Case c;
+    try {
+        bodt::BuiltMesh b = bodt::build_mesh(a);
+        assert_false(b.flipped);
+        c.mesh = std::move(b.mesh);
+        if (!in.regions.empty()) c.mesh.regions = in.regions;
+        for (const auto& [f, m] : in.markers) c.mesh.face_markers[f] = m;
+        for (const auto& e : in.features) c.mesh.feature_edges.insert(bodt::edge_key(e[0], e[1]));
+        for (int32_t v : in.fixed) c.mesh.vflags[v] |= bodt::kFixed;
+        c.mesh.update_vertex_flags();
+        bodt::RegionSurfaces s;
+        s.build(c.mesh, 0, bodt::BoundarySurface::Strictness::Strict);
+        c.classes = bodt::classify_vertices(c.mesh, s, bodt::FeatureSettings{});
+    } catch (const bodt::Error& e) {
+        fail_msg("making the input: %s", e.what());
+    }
+    return c;
+}
+
+// The written mesh, topology rebuilt, classified again: the input of a
+// fresh EditableMesh.
+Case reopen(const EditableMesh& em) {
+    Case c;
+    em.write_to(c.mesh);
+    try {
+        c.mesh.build_topology(0);
+        bodt::RegionSurfaces s;
+        s.build(c.mesh, 0, bodt::BoundarySurface::Strictness::Strict);
+        c.classes = bodt::classify_vertices(c.mesh, s, bodt::FeatureSettings{});
+    } catch (const bodt::Error& e) {
+        fail_msg("reopening: %s", e.what());
+    }
+    return c;
+}
+
+TetMesh written(const EditableMesh& em) {
+    TetMesh m;
+    em.write_to(m);
+    return m;
+}
+
+// ----------------------------------------------------------- measurements
+
+using FaceOwners = std::unordered_map<FaceKey, std::vector<std::pair<int32_t, int>>, bodt::FaceKeyHash>;
+
+FaceKey face_of(const Tet& q, int i) {
+    return FaceKey::of(q[bodt::kFaceVertex[i][0]], q[bodt::kFaceVertex[i][1]], q[bodt::kFaceVertex[i][2]]);
+}
+
+FaceOwners face_owners(const TetMesh& m) {
+    FaceOwners out;
+    for (int32_t t = 0; t < m.num_tets(); ++t)
+        for (int i = 0; i < 4; ++i) out[face_of(m.tets[t], i)].push_back({t, i});
+    return out;
+}
+
+// (marker, region inside, region outside or -1 on the domain boundary); a
+// marked face inside one region has both equal.
+using SurfaceKey = std::array<int32_t, 3>;
+
+struct Measures {
+    std::map<int32_t, double> volume;  // per region
+    std::map<SurfaceKey, Vec3> vector_area;
+    std::map<SurfaceKey, double> area;
+    double total_volume = 0.0, total_area = 0.0;
+    double feature_length = 0.0;  // the caller's feature edges
+};
+
+Measures measure(const TetMesh& m, const FaceOwners& owners) {
+    Measures out;
+    for (int32_t t = 0; t < m.num_tets(); ++t) {
+        const auto p = m.tet_points(t);
+        const double v = bodt::signed_volume(p[0], p[1], p[2], p[3]);
+        out.volume[m.regions[t]] += v;
+        out.total_volume += v;
+    }
+    for (const auto& [f, own] : owners) {
+        const auto it = m.face_markers.find(f);
+        const int32_t marker = it == m.face_markers.end() ? 0 : it->second;
+        const bool two = own.size() == 2;
+        if (two && m.regions[own[0].first] == m.regions[own[1].first] && it == m.face_markers.end()) continue;
+        // Oriented out of the tet with the lower region (the only one on the
+        // boundary); a marked face inside a region by a fixed rule.
+        auto [t, i] = own[0];
+        if (two && m.regions[own[1].first] < m.regions[t]) std::tie(t, i) = own[1];
+        const Tet& q = m.tets[t];
+        const Vec3& a = m.points[q[bodt::kFaceVertex[i][0]]];
+        Vec3 n = 0.5 * (m.points[q[bodt::kFaceVertex[i][1]]] - a).cross(m.points[q[bodt::kFaceVertex[i][2]]] - a);
+        SurfaceKey key{marker, m.regions[t], two ? m.regions[own[0].first + own[1].first - t] : -1};
+        if (two && key[1] == key[2]) {
+            int big = 0;
+            for (int k = 1; k < 3; ++k)
+                if (std::fabs(n[k]) > std::fabs(n[big])) big = k;
+            if (n[big] < 0) n = -n;
+        }
+        if (!out.vector_area.count(key)) out.vector_area[key] = Vec3::Zero();
+        out.vector_area[key] += n;
+        out.area[key] += n.norm();
+        out.total_area += n.norm();
+    }
+    for (bodt::EdgeKey k : m.feature_edges)
+        out.feature_length += (m.points[bodt::edge_first(k)] - m.points[bodt::edge_second(k)]).norm();
+    return out;
+}
+
+// What every result must keep, taken from the input.
+struct Reference {
+    Measures measures;
+    std::vector<int32_t> regions;  // of the input tets
+    std::vector<Vec3> points;      // of the input vertices
+    std::vector<int32_t> corners;  // input vertices classed Corner
+};
+
+Reference reference_of(const Case& c) {
+    Reference r;
+    r.measures = measure(c.mesh, face_owners(c.mesh));
+    r.regions = c.mesh.regions;
+    r.points = c.mesh.points;
+    for (int32_t v = 0; v < c.mesh.num_vertices(); ++v)
+        if (c.classes.cls[v] == bodt::VertexClass::Corner) r.corners.push_back(v);
+    return r;
+}
+
+// The value at input vertex v of the linear field the parents must reproduce.
+double field(const Vec3& x) { return 0.3 * x.x() - 1.7 * x.y() + 2.2 * x.z() + 0.9; }
+
+double interpolated(const Reference& ref, const bodt::Parents& parents) {
+    double f = 0.0;
+    for (const bodt::Parent& p : parents) f += p.weight * field(ref.points[p.vertex]);
+    return f;
+}
+
+// The smallest barycentric coordinate of x in the tet p.
+double depth_in(const bodt::TetPoints& p, const Vec3& x) {
+    const double whole = bodt::signed_volume(p[0], p[1], p[2], p[3]);
+    double depth = 1e300;
+    for (int i = 0; i < 4; ++i) {
+        bodt::TetPoints s = p;
+        s[i] = x;
+        depth = std::min(depth, bodt::signed_volume(s[0], s[1], s[2], s[3]) / whole);
+    }
+    return depth;
+}
+
+#define CHECK(cond, ...)                                                     \
+    do {                                                                     \
+        if (!(cond)) {                                                       \
+            char msg_[400];                                                  \
+            std::snprintf(msg_, sizeof msg_, __VA_ARGS__);                   \
+            fail_msg("%s: %s (%s, line %d)", what, msg_, #cond, __LINE__);   \
+        }                                                                    \
+    } while (0)
+
+// Every invariant of the header comment; returns the written mesh (topology
+// built).
+TetMesh check_valid(const EditableMesh& em, const Reference& ref, const char* what) {
+    // The EditableMesh's own incidence.
+    int64_t alive = 0, listed = 0;
+    for (int32_t t = 0; t < em.tet_capacity(); ++t) {
+        if (!em.alive(t)) continue;
+        ++alive;
+        for (int32_t v : em.tet(t)) {
+            const auto& list = em.tets_of(v);
+            CHECK(std::count(list.begin(), list.end(), t) == 1, "tet %d is listed %d times at vertex %d", t,
+                  static_cast<int>(std::count(list.begin(), list.end(), t)), v);
+        }
+    }
+    for (int32_t v = 0; v < em.num_vertices(); ++v)
+        for (int32_t t : em.tets_of(v)) {
+            CHECK(em.alive(t), "vertex %d lists removed tet %d", v, t);
+            ++listed;
+        }
+    CHECK(listed == 4 * alive, "%lld vertex->tet entries for %lld tets", static_cast<long long>(listed),
+          static_cast<long long>(alive));
+
+    TetMesh m = written(em);
+    CHECK(m.num_tets() == alive, "%d tets written, %lld alive", m.num_tets(), static_cast<long long>(alive));
+    CHECK(m.regions.size() == m.tets.size() && m.tet_origin.size() == m.tets.size(), "per-tet arrays");
+    const int32_t nin = m.num_input_vertices();
+    CHECK(nin == static_cast<int32_t>(ref.points.size()), "%d input vertices, expected %zu", nin, ref.points.size());
+    for (int32_t t = 0; t < m.num_tets(); ++t) {
+        const Tet& q = m.tets[t];
+        for (int k = 0; k < 4; ++k) {
+            CHECK(q[k] >= 0 && q[k] < m.num_vertices(), "tet %d uses vertex %d", t, q[k]);
+            for (int j = 0; j < k; ++j) CHECK(q[j] != q[k], "tet %d repeats vertex %d", t, q[k]);
+        }
+        const auto p = m.tet_points(t);
+        CHECK(bodt::orient(p[0], p[1], p[2], p[3]).sign > 0, "tet %d (%d %d %d %d) is not positively oriented", t, q[0],
+              q[1], q[2], q[3]);
+        const int32_t o = m.tet_origin[t];
+        CHECK(o >= 0 && o < static_cast<int32_t>(ref.regions.size()), "tet %d has origin %d", t, o);
+        CHECK(m.regions[t] == ref.regions[o], "tet %d: region %d, its origin %d had %d", t, m.regions[t], o,
+              ref.regions[o]);
+    }
+
+    // Brute-force faces: one or two tets, two on opposite sides.
+    const FaceOwners owners = face_owners(m);
+    std::map<std::pair<int32_t, int>, int32_t> across;
+    for (const auto& [f, own] : owners) {
+        CHECK(own.size() == 1 || own.size() == 2, "face (%d %d %d) is in %zu tets", f.v[0], f.v[1], f.v[2], own.size());
+        if (own.size() != 2) {
+            across[own[0]] = -1;
+            continue;
+        }
+        const Vec3 &a = m.points[f.v[0]], &b = m.points[f.v[1]], &c = m.points[f.v[2]];
+        const int s0 = bodt::orient(a, b, c, m.points[m.tets[own[0].first][own[0].second]]).sign;
+        const int s1 = bodt::orient(a, b, c, m.points[m.tets[own[1].first][own[1].second]]).sign;
+        CHECK(s0 * s1 < 0, "tets %d and %d lie on one side of face (%d %d %d)", own[0].first, own[1].first, f.v[0],
+              f.v[1], f.v[2]);
+        across[own[0]] = own[1].first;
+        across[own[1]] = own[0].first;
+    }
+    try {
+        m.build_topology(0);
+        bodt::RegionSurfaces s;
+        s.build(m, 0, bodt::BoundarySurface::Strictness::Strict);
+    } catch (const bodt::Error& e) {
+        CHECK(false, "rebuilding: %s", e.what());
+    }
+    for (int32_t t = 0; t < m.num_tets(); ++t)
+        for (int i = 0; i < 4; ++i)
+            CHECK(m.neighbors[t][i] == across.at({t, i}), "tet %d face %d: neighbour %d, brute force %d", t, i,
+                  m.neighbors[t][i], across.at({t, i}));
+
+    // Markers on surface faces, caller feature edges on surface edges.
+    for (const auto& [f, marker] : m.face_markers) {
+        const auto it = owners.find(f);
+        CHECK(it != owners.end(), "marker %d on (%d %d %d), not a face", marker, f.v[0], f.v[1], f.v[2]);
+        CHECK(m.is_surface_face(it->second[0].first, it->second[0].second), "marker %d on an inner face", marker);
+    }
+    for (bodt::EdgeKey k : m.feature_edges) {
+        const int32_t a = bodt::edge_first(k), b = bodt::edge_second(k);
+        CHECK(a >= 0 && b < m.num_vertices() && a != b, "feature edge (%d %d)", a, b);
+        bool on_surface = false;
+        for (const int32_t* t = m.star_begin(a); t != m.star_end(a); ++t)
+            for (int i = 0; i < 4; ++i) {
+                const Tet& q = m.tets[*t];
+                if (q[i] != a && q[i] != b && std::count(q.begin(), q.end(), b) && m.is_surface_face(*t, i))
+                    on_surface = true;
+            }
+        CHECK(on_surface, "feature edge (%d %d) is not a surface edge", a, b);
+    }
+
+    // What the input fixed.
+    const Measures got = measure(m, owners);
+    const Measures& want = ref.measures;
+    const double vtol = 1e-12 * want.total_volume, atol = 1e-12 * want.total_area;
+    CHECK(got.volume.size() == want.volume.size(), "%zu regions, expected %zu", got.volume.size(), want.volume.size());
+    for (const auto& [r, v] : want.volume)
+        CHECK(got.volume.count(r) && std::fabs(got.volume.at(r) - v) <= vtol, "region %d: volume %.17g, expected %.17g",
+              r, got.volume.count(r) ? got.volume.at(r) : 0.0, v);
+    CHECK(got.area.size() == want.area.size(), "%zu kinds of surface face, expected %zu", got.area.size(),
+          want.area.size());
+    for (const auto& [key, area] : want.area) {
+        CHECK(got.area.count(key), "no surface face of marker %d between regions %d and %d left", key[0], key[1], key[2]);
+        CHECK(std::fabs(got.area.at(key) - area) <= atol, "marker %d, regions %d/%d: area %.17g, expected %.17g", key[0],
+              key[1], key[2], got.area.at(key), area);
+        CHECK((got.vector_area.at(key) - want.vector_area.at(key)).norm() <= atol,
+              "marker %d, regions %d/%d: the vector area moved by %g", key[0], key[1], key[2],
+              (got.vector_area.at(key) - want.vector_area.at(key)).norm());
+    }
+    CHECK(std::fabs(got.feature_length - want.feature_length) <= 1e-12 * (1.0 + want.feature_length),
+          "feature edges' length %.17g, expected %.17g", got.feature_length, want.feature_length);
+
+    // History: parents, corners.
+    for (size_t k = 0; k < m.new_parents.size(); ++k) {
+        double sum = 0.0;
+        for (const bodt::Parent& p : m.new_parents[k]) {
+            CHECK(p.vertex >= 0 && p.vertex < nin, "new vertex %zu has parent %d", nin + k, p.vertex);
+            CHECK(p.weight > 0.0, "new vertex %zu: weight %g", nin + k, p.weight);
+            sum += p.weight;
+        }
+        CHECK(std::fabs(sum - 1.0) <= 1e-12, "new vertex %zu: weights sum to %.17g", nin + k, sum);
+    }
+    for (int32_t v : ref.corners) {
+        CHECK(!(m.vflags[v] & bodt::kUnused), "corner %d was removed", v);
+        CHECK(m.points[v] == ref.points[v], "corner %d moved", v);
+    }
+    return m;
+}
+
+// The two written meshes are equal in everything write_to gives.
+void expect_same(const TetMesh& a, const TetMesh& b, const char* what) {
+    CHECK(a.points == b.points, "points differ (%d and %d vertices)", a.num_vertices(), b.num_vertices());
+    CHECK(a.tets == b.tets, "tets differ (%d and %d)", a.num_tets(), b.num_tets());
+    CHECK(a.regions == b.regions, "regions differ");
+    CHECK(a.tet_origin == b.tet_origin, "tet origins differ");
+    CHECK(a.face_markers == b.face_markers, "face markers differ (%zu and %zu)", a.face_markers.size(),
+          b.face_markers.size());
+    CHECK(a.feature_edges == b.feature_edges, "feature edges differ (%zu and %zu)", a.feature_edges.size(),
+          b.feature_edges.size());
+    CHECK(a.vflags == b.vflags, "vertex flags differ");
+    CHECK(a.new_parents.size() == b.new_parents.size(), "new vertices differ");
+    for (size_t k = 0; k < a.new_parents.size(); ++k) {
+        CHECK(a.new_parents[k].size() == b.new_parents[k].size(), "parents of new vertex %zu differ", k);
+        for (size_t j = 0; j < a.new_parents[k].size(); ++j)
+            CHECK(a.new_parents[k][j].vertex == b.new_parents[k][j].vertex &&
+                      a.new_parents[k][j].weight == b.new_parents[k][j].weight,
+                  "parents of new vertex %zu differ", k);
+    }
+}
+
+// A refused operation: false/-1 and nothing changed, nothing logged.
+template <class Op>
+void expect_refused(EditableMesh& em, const char* what, Op op) {
+    const TetMesh before = written(em);
+    const size_t mark = em.checkpoint();
+    const int32_t cap = em.tet_capacity(), nv = em.num_vertices();
+    const bool done = op();
+    CHECK(!done, "the operation was not refused");
+    CHECK(em.checkpoint() == mark, "a refused operation left %zu changes logged", em.checkpoint() - mark);
+    CHECK(em.tet_capacity() == cap && em.num_vertices() == nv, "a refused operation grew the mesh");
+    expect_same(written(em), before, what);
+}
+
+// ------------------------------------------------------------ small meshes
+
+// The tets between a ring of k points (counter-clockwise around z, near
+// z = 0) and two apexes on either side: k tets around the edge (0, 1).
+// Vertex 0 is the top apex, 1 the bottom one, 2.. the ring.
+Input bipyramid(const std::vector<Vec3>& ring, const Vec3& top, const Vec3& bottom) {
+    Input in;
+    in.points = {top, bottom};
+    in.points.insert(in.points.end(), ring.begin(), ring.end());
+    const int32_t k = static_cast<int32_t>(ring.size());
+    for (int32_t i = 0; i < k; ++i) add_tet(in, 0, 1, 2 + i, 2 + (i + 1) % k);
+    return in;
+}
+
+std::vector<Vec3> regular_ring(int k, double radius) {
+    std::vector<Vec3> ring;
+    for (int i = 0; i < k; ++i) ring.emplace_back(radius * std::cos(2 * M_PI * i / k), radius * std::sin(2 * M_PI * i / k), 0);
+    return ring;
+}
+
+std::set<std::array<int32_t, 4>> tet_set(const TetMesh& m) {
+    std::set<std::array<int32_t, 4>> out;
+    for (Tet q : m.tets) {
+        std::sort(q.begin(), q.end());
+        out.insert(q);
+    }
+    return out;
+}
+
+bool has_edge(const TetMesh& m, int32_t a, int32_t b) {
+    for (const Tet& q : m.tets)
+        if (std::count(q.begin(), q.end(), a) && std::count(q.begin(), q.end(), b)) return true;
+    return false;
+}
+
+double worst_sine(const TetMesh& m) {
+    double w = 1.0;
+    for (int32_t t = 0; t < m.num_tets(); ++t) w = std::min(w, bodt::min_dihedral_sine(m.tet_points(t)));
+    return w;
+}
+
+// Each tet's origin (an input tet) holds the tet's centroid.
+void expect_origins_hold_centroids(const TetMesh& m, const TetMesh& input, const char* what) {
+    for (int32_t t = 0; t < m.num_tets(); ++t) {
+        const Tet& q = m.tets[t];
+        const Vec3 c = 0.25 * (m.points[q[0]] + m.points[q[1]] + m.points[q[2]] + m.points[q[3]]);
+        const double d = depth_in(input.tet_points(m.tet_origin[t]), c);
+        CHECK(d >= -1e-12, "tet %d's centroid lies outside its origin %d (barycentric %g)", t, m.tet_origin[t], d);
+    }
+}
+
+// ------------------------------------------------------------------ flips
+
+void test_remove_edge_3_2(void**) {
+    const char* what = "3-2";
+    const Case c = make_case(bipyramid(regular_ring(3, 1.0), Vec3(0.1, 0, 0.6), Vec3(-0.1, 0.05, -0.5)));
+    const Reference ref = reference_of(c);
+    EditableMesh em(c.mesh, c.classes);
+    assert_true(bodt::remove_edge(em, 0, 1, loose_rules(), 0.0));
+    const TetMesh m = check_valid(em, ref, what);
+    assert_int_equal(m.num_tets(), 2);
+    assert_false(has_edge(m, 0, 1));
+    // the two tets on the ring triangle, one per apex
+    const std::set<std::array<int32_t, 4>> want{{0, 2, 3, 4}, {1, 2, 3, 4}};
+    assert_true(tet_set(m) == want);
+    expect_origins_hold_centroids(m, c.mesh, what);
+    // the ring's triangle cannot go: removing a ring edge (a boundary edge
+    // between non-coplanar faces) is refused
+    expect_refused(em, "3-2: boundary edge", [&] { return bodt::remove_edge(em, 2, 3, loose_rules(), 0.0); });
+}
+
+void test_flip_23(void**) {
+    const char* what = "2-3";
+    // two tets on the triangle (2, 3, 4), apexes 0 above and 1 below
+    Input in;
+    in.points = {Vec3(0.1, 0, 0.7), Vec3(-0.1, 0.1, -0.6)};
+    for (const Vec3& p : regular_ring(3, 1.0)) in.points.push_back(p);
+    add_tet(in, 0, 2, 3, 4);
+    add_tet(in, 1, 2, 3, 4);
+    const FaceKey shared = FaceKey::of(2, 3, 4);
+    {
+        const Case c = make_case(in);
+        const Reference ref = reference_of(c);
+        EditableMesh em(c.mesh, c.classes);
+        assert_true(bodt::flip_23(em, shared, loose_rules(), 0.0));
+        const TetMesh m = check_valid(em, ref, what);
+        assert_int_equal(m.num_tets(), 3);
+        for (int32_t v = 2; v <= 4; ++v) assert_true(has_edge(m, 0, 1) && has_edge(m, 0, v) && has_edge(m, 1, v));
+        expect_origins_hold_centroids(m, c.mesh, what);
+        // and back: the 3-2 flip restores the two tets
+        assert_true(bodt::remove_edge(em, 0, 1, loose_rules(), 0.0));
+        const TetMesh back = check_valid(em, ref, what);
+        assert_true(tet_set(back) == tet_set(c.mesh));
+        // a face that is on the boundary has one tet
+        expect_refused(em, "2-3: boundary face", [&] { return bodt::flip_23(em, FaceKey::of(0, 2, 3), loose_rules(), 0.0); });
+    }
+    {
+        // the same pair in two regions: the face is an interface
+        Input two = in;
+        two.regions = {0, 1};
+        const Case c = make_case(two);
+        EditableMesh em(c.mesh, c.classes);
+        expect_refused(em, "2-3 across regions", [&] { return bodt::flip_23(em, shared, loose_rules(), 0.0); });
+    }
+    {
+        // a marked shared face
+        Input marked = in;
+        marked.markers.push_back({shared, 3});
+        const Case c = make_case(marked);
+        EditableMesh em(c.mesh, c.classes);
+        expect_refused(em, "2-3 on a marked face", [&] { return bodt::flip_23(em, shared, loose_rules(), 0.0); });
+    }
+    {
+        // apexes beside the triangle: the new edge would leave the pair
+        Input bent = in;
+        bent.points[0] = Vec3(2.0, 0, 0.7);
+        bent.points[1] = Vec3(2.0, 0.1, -0.6);
+        bent.tets.clear();
+        add_tet(bent, 0, 2, 3, 4);
+        add_tet(bent, 1, 2, 3, 4);
+        const Case c = make_case(bent);
+        EditableMesh em(c.mesh, c.classes);
+        expect_refused(em, "2-3 of a non-convex pair", [&] { return bodt::flip_23(em, shared, loose_rules(), 0.0); });
+        // must_exceed above what the flip reaches refuses a valid flip too
+        const Case ok = make_case(in);
+        EditableMesh em2(ok.mesh, ok.classes);
+        expect_refused(em2, "2-3 below must_exceed", [&] { return bodt::flip_23(em2, shared, loose_rules(), 0.99); });
+    }
+}
+
+// The best worst sine over every triangulation of the ring polygon, each
+// triangle (i, m, j) making (top, r_i, r_m, r_j) and (bottom, r_j, r_m, r_i):
+// brute force over the Catalan-many triangulations.
+void triangulations(int i, int j, std::vector<std::vector<std::array<int, 3>>>& out) {
+    out.clear();
+    if (j - i < 2) {
+        out.push_back({});
+        return;
+    }
+    for (int m = i + 1; m < j; ++m) {
+        std::vector<std::vector<std::array<int, 3>>> left, right;
+        triangulations(i, m, left);
+        triangulations(m, j, right);
+        for (const auto& l : left)
+            for (const auto& r : right) {
+                std::vector<std::array<int, 3>> t = l;
+                t.insert(t.end(), r.begin(), r.end());
+                t.push_back({i, m, j});
+                out.push_back(t);
+            }
+    }
+}
+
+double best_triangulation(const Input& in, int k, int& count) {
+    std::vector<std::vector<std::array<int, 3>>> all;
+    triangulations(0, k - 1, all);
+    count = static_cast<int>(all.size());
+    const auto& P = in.points;
+    double best = -1.0;
+    for (const auto& tri : all) {
+        double worst = 1.0;
+        for (const auto& t : tri) {
+            worst = std::min(worst, bodt::min_dihedral_sine({P[0], P[2 + t[0]], P[2 + t[1]], P[2 + t[2]]}));
+            worst = std::min(worst, bodt::min_dihedral_sine({P[1], P[2 + t[2]], P[2 + t[1]], P[2 + t[0]]}));
+        }
+        best = std::max(best, worst);
+    }
+    return best;
+}
+
+void test_remove_edge_4_4(void**) {
+    const char* what = "4-4";
+    // an octahedron squeezed along x: the diagonal (2, 4) along x is the
+    // shorter one
+    const std::vector<Vec3> ring{Vec3(0.7, 0, 0), Vec3(0, 1, 0), Vec3(-0.7, 0, 0), Vec3(0, -1, 0)};
+    const Input in = bipyramid(ring, Vec3(0, 0, 1), Vec3(0, 0, -1));
+    const Case c = make_case(in);
+    const Reference ref = reference_of(c);
+    // the two triangulations, computed here
+    const auto quality = [&](int32_t d0, int32_t d1, int32_t o0, int32_t o1) {
+        double w = 1.0;
+        for (int32_t apex : {0, 1})
+            for (int32_t other : {o0, o1}) {
+                bodt::TetPoints p{in.points[apex], in.points[d0], in.points[d1], in.points[other]};
+                if (orient6(p[0], p[1], p[2], p[3]) < 0) std::swap(p[2], p[3]);
+                w = std::min(w, bodt::min_dihedral_sine(p));
+            }
+        return w;
+    };
+    const double along_x = quality(2, 4, 3, 5), along_y = quality(3, 5, 2, 4);
+    assert_true(along_x > along_y + 1e-3);
+    EditableMesh em(c.mesh, c.classes);
+    assert_true(bodt::remove_edge(em, 0, 1, loose_rules(), 0.0));
+    const TetMesh m = check_valid(em, ref, what);
+    assert_int_equal(m.num_tets(), 4);
+    assert_false(has_edge(m, 0, 1));
+    assert_true(has_edge(m, 2, 4));
+    assert_false(has_edge(m, 3, 5));
+    assert_near(worst_sine(m), along_x, 1e-14);
+    expect_origins_hold_centroids(m, c.mesh, what);
+}
+
+void test_remove_edge_optimal(void**) {
+    std::mt19937 rng(2024);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    TopologyRules rules = loose_rules();
+    rules.min_stretch = 0.0;  // only orientation limits the triangulations
+    int cases = 0;
+    for (int k = 3; k <= bodt::kMaxEdgeRing; ++k) {
+        for (int trial = 0; trial < 12; ++trial) {
+            std::vector<Vec3> ring;
+            for (int i = 0; i < k; ++i) {
+                const double angle = 2 * M_PI * (i + 0.3 * u(rng)) / k, r = 1.0 + 0.25 * u(rng);
+                ring.emplace_back(r * std::cos(angle), r * std::sin(angle), 0.25 * u(rng));
+            }
+            const Vec3 top(0.2 * u(rng), 0.2 * u(rng), 0.8 + 0.4 * u(rng));
+            const Vec3 bottom(0.2 * u(rng), 0.2 * u(rng), -0.8 + 0.4 * u(rng));
+            if (orient6(top, bottom, ring[0], ring[1]) < 0) std::reverse(ring.begin(), ring.end());
+            const Input in = bipyramid(ring, top, bottom);
+            // every tet (0, 1, r_i, r_i+1) must come out positive as given
+            bool fan = true;
+            for (int i = 0; i < k; ++i) fan = fan && in.tets[i] == Tet{0, 1, 2 + i, 2 + (i + 1) % k};
+            if (!fan) continue;
+            int count = 0;
+            const double best = best_triangulation(in, k, count);
+            char what[64];
+            std::snprintf(what, sizeof what, "edge removal k=%d trial %d", k, trial);
+            const Case c = make_case(in);
+            const Reference ref = reference_of(c);
+            EditableMesh em(c.mesh, c.classes);
+            if (!(best > 0.0)) {
+                expect_refused(em, what, [&] { return bodt::remove_edge(em, 0, 1, rules, 0.0); });
+                continue;
+            }
+            // just above the best: refused; just below: done
+            expect_refused(em, what, [&] { return bodt::remove_edge(em, 0, 1, rules, best * (1 + 1e-9)); });
+            assert_true(bodt::remove_edge(em, 0, 1, rules, best * (1 - 1e-9)));
+            const TetMesh m = check_valid(em, ref, what);
+            CHECK(m.num_tets() == 2 * k - 4, "%d tets", m.num_tets());
+            CHECK(std::fabs(worst_sine(m) - best) <= 1e-14, "worst sine %.17g, the best of %d triangulations %.17g",
+                  worst_sine(m), count, best);
+            expect_origins_hold_centroids(m, c.mesh, what);
+            ++cases;
+        }
+    }
+    assert_true(cases >= 40);
+}
+
+// A square pyramid on z = 0 (vertices 0..3 the base, 4 the apex), its base
+// cut along (0, 2): the 2-2 flip turns that into (1, 3).
+Input pyramid(double lift3) {
+    Input in;
+    in.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, lift3), Vec3(0.45, 0.55, 0.8)};
+    add_tet(in, 0, 2, 1, 4);
+    add_tet(in, 0, 2, 3, 4);
+    return in;
+}
+
+void test_boundary_2_2(void**) {
+    const char* what = "2-2";
+    const FaceKey base0 = FaceKey::of(0, 1, 2), base1 = FaceKey::of(0, 2, 3);
+    {
+        Input in = pyramid(0.0);
+        in.markers = {{base0, 4}, {base1, 4}, {FaceKey::of(0, 1, 4), 8}};
+        const Case c = make_case(in);
+        const Reference ref = reference_of(c);
+        EditableMesh em(c.mesh, c.classes);
+        assert_true(bodt::remove_edge(em, 0, 2, loose_rules(), 0.0));
+        const TetMesh m = check_valid(em, ref, what);
+        assert_int_equal(m.num_tets(), 2);
+        assert_false(has_edge(m, 0, 2));
+        assert_true(has_edge(m, 1, 3));
+        // the marker moved to the new base faces; the side keeps its own
+        assert_int_equal(m.face_markers.size(), 3);
+        assert_int_equal(m.face_markers.at(FaceKey::of(0, 1, 3)), 4);
+        assert_int_equal(m.face_markers.at(FaceKey::of(1, 2, 3)), 4);
+        assert_int_equal(m.face_markers.at(FaceKey::of(0, 1, 4)), 8);
+        expect_origins_hold_centroids(m, c.mesh, what);
+        // an edge of the base and a side
+        expect_refused(em, "2-2: base edge on a side", [&] { return bodt::remove_edge(em, 0, 1, loose_rules(), 0.0); });
+    }
+    {
+        Input in = pyramid(0.0);
+        in.markers = {{base0, 4}, {base1, 5}};
+        const Case c = make_case(in);
+        EditableMesh em(c.mesh, c.classes);
+        expect_refused(em, "2-2 between markers", [&] { return bodt::remove_edge(em, 0, 2, loose_rules(), 0.0); });
+    }
+    {
+        const Case c = make_case(pyramid(0.0));
+        EditableMesh em(c.mesh, c.classes);
+        TopologyRules keep = loose_rules();
+        keep.surface_may_change = false;
+        expect_refused(em, "2-2 with a fixed surface", [&] { return bodt::remove_edge(em, 0, 2, keep, 0.0); });
+    }
+    {
+        Input in = pyramid(0.0);
+        in.features = {{0, 2}};
+        const Case c = make_case(in);
+        EditableMesh em(c.mesh, c.classes);
+        expect_refused(em, "2-2 of a caller feature edge", [&] { return bodt::remove_edge(em, 0, 2, loose_rules(), 0.0); });
+    }
+    {
+        // the base bent along (0, 2) by lifting vertex 3
+        const Case c = make_case(pyramid(0.05));
+        EditableMesh em(c.mesh, c.classes);
+        expect_refused(em, "2-2 of a bent base", [&] { return bodt::remove_edge(em, 0, 2, loose_rules(), 0.0); });
+    }
+    {
+        // every edge of a box's edges (two faces at 90 degrees)
+        test_mesh tm{};
+        assert_int_equal(tm_make_cubes(&tm, 2, 1.0, nullptr, nullptr, 0.0, 1), 0);
+        const Case c = make_case(from_test_mesh(tm, nullptr));
+        tm_free(&tm);
+        EditableMesh em(c.mesh, c.classes);
+        int tried = 0;
+        for (const Tet& q : c.mesh.tets)
+            for (const auto& e : bodt::kEdgeVertex) {
+                const Vec3 &a = c.mesh.points[q[e[0]]], &b = c.mesh.points[q[e[1]]];
+                int on_sides = 0;  // axes along which both ends are on a side
+                for (int ax = 0; ax < 3; ++ax)
+                    on_sides += (a[ax] == 0.0 || a[ax] == 1.0) && a[ax] == b[ax];
+                if (on_sides < 2) continue;
+                ++tried;
+                expect_refused(em, "2-2 of a box edge", [&] { return bodt::remove_edge(em, q[e[0]], q[e[1]], loose_rules(), 0.0); });
+            }
+        assert_true(tried >= 24);
+    }
+}
+
+// ------------------------------------------------------------------ splits
+
+// A Kuhn box n^3 of [0, 1]^3 with interior jitter, each side its own marker.
+Case kuhn_box(int n, double jitter, uint64_t seed, bool mark_sides) {
+    test_mesh tm{};
+    assert_int_equal(tm_make_cubes(&tm, n, 1.0, nullptr, nullptr, jitter, seed), 0);
+    Input in = from_test_mesh(tm, nullptr);
+    tm_free(&tm);
+    if (mark_sides) mark_box_sides(in, 1.0);
+    return make_case(in);
+}
+
+int32_t vertex_at(const TetMesh& m, const Vec3& p) {
+    for (int32_t v = 0; v < m.num_vertices(); ++v)
+        if ((m.points[v] - p).norm() < 1e-12) return v;
+    fail_msg("no vertex at (%g, %g, %g)", p.x(), p.y(), p.z());
+    return -1;
+}
+
+// The one interior vertex of a Kuhn box 2^3 (the jittered centre).
+int32_t only_interior(const Case& c) {
+    int32_t found = -1, count = 0;
+    for (int32_t v = 0; v < c.mesh.num_vertices(); ++v)
+        if (c.classes.cls[v] == bodt::VertexClass::Interior) {
+            found = v;
+            ++count;
+        }
+    assert_int_equal(count, 1);
+    return found;
+}
+
+int edge_degree(const TetMesh& m, int32_t a, int32_t b) {
+    int n = 0;
+    for (const Tet& q : m.tets) n += std::count(q.begin(), q.end(), a) && std::count(q.begin(), q.end(), b);
+    return n;
+}
+
+void test_split_edge(void**) {
+    const Case c = kuhn_box(2, 0.2, 3, true);
+    const Reference ref = reference_of(c);
+    const TetMesh& in = c.mesh;
+    const int32_t center = only_interior(c);
+    {
+        // an interior edge from the centre to a side's middle
+        const char* what = "split of an interior edge";
+        const int32_t b = vertex_at(in, Vec3(0.5, 0.5, 0));
+        EditableMesh em(in, c.classes);
+        assert_false(em.is_surface_edge(center, b));
+        const int k = edge_degree(in, center, b);
+        const Vec3 p = in.points[center] + 0.3 * (in.points[b] - in.points[center]);
+        const int32_t m = bodt::split_edge(em, center, b, p, loose_rules(), 0.0);
+        assert_int_equal(m, in.num_vertices());
+        assert_true(em.point(m) == p);
+        assert_true(em.vertex_class(m) == bodt::VertexClass::Interior);
+        assert_near(interpolated(ref, em.parents(m)), field(p), 1e-12);
+        const TetMesh out = check_valid(em, ref, what);
+        assert_int_equal(out.num_tets(), in.num_tets() + k);
+        assert_int_equal(edge_degree(out, center, b), 0);
+        assert_int_equal(edge_degree(out, center, m) + edge_degree(out, m, b), 2 * k);
+        expect_origins_hold_centroids(out, in, what);
+        assert_near(interpolated(ref, out.new_parents[0]), field(out.points[m]), 1e-12);
+    }
+    {
+        // a surface edge on the side z = 0 (marker 5): the point is
+        // projected onto the edge, the marker follows the pieces
+        const char* what = "split of a surface edge";
+        const int32_t a = vertex_at(in, Vec3(0, 0, 0)), b = vertex_at(in, Vec3(0.5, 0.5, 0));
+        EditableMesh em(in, c.classes);
+        assert_true(em.is_surface_edge(a, b));
+        const Vec3 on = in.points[a] + 0.4 * (in.points[b] - in.points[a]);
+        const int32_t m = bodt::split_edge(em, a, b, on + Vec3(0.05, -0.05, 0.1), loose_rules(), 0.0);
+        assert_true(m >= 0);
+        assert_true((em.point(m) - on).norm() < 1e-15);
+        assert_true(em.vertex_class(m) == bodt::VertexClass::Surface);
+        assert_near(interpolated(ref, em.parents(m)), field(em.point(m)), 1e-12);
+        const TetMesh out = check_valid(em, ref, what);
+        int marked = 0;
+        for (const auto& [f, marker] : out.face_markers)
+            if (std::count(f.v.begin(), f.v.end(), m)) {
+                assert_int_equal(marker, 5);
+                ++marked;
+            }
+        assert_int_equal(marked, 4);  // the two faces on the edge, each in two
+        expect_origins_hold_centroids(out, in, what);
+        // without surface_may_change: refused
+        TopologyRules keep = loose_rules();
+        keep.surface_may_change = false;
+        EditableMesh em2(in, c.classes);
+        expect_refused(em2, "surface edge split, surface fixed", [&] { return bodt::split_edge(em2, a, b, on, keep, 0.0) >= 0; });
+        // at an endpoint, and beyond it: refused
+        expect_refused(em2, "split at an endpoint", [&] { return bodt::split_edge(em2, a, b, in.points[a], loose_rules(), 0.0) >= 0; });
+        expect_refused(em2, "split beyond an endpoint",
+                       [&] { return bodt::split_edge(em2, center, b, 2.0 * in.points[b] - in.points[center], loose_rules(), 0.0) >= 0; });
+        // a point that cuts a piece inside out
+        expect_refused(em2, "split far off an interior edge", [&] {
+            return bodt::split_edge(em2, center, b, 0.5 * (in.points[center] + in.points[b]) + Vec3(0.7, 0.7, 0), loose_rules(), 0.0) >= 0;
+        });
+    }
+    {
+        // a caller feature edge on the box edge x = y = 0
+        const char* what = "split of a feature edge";
+        Input box;
+        test_mesh tm{};
+        assert_int_equal(tm_make_cubes(&tm, 2, 1.0, nullptr, nullptr, 0.2, 3), 0);
+        box = from_test_mesh(tm, nullptr);
+        tm_free(&tm);
+        const int32_t a = vertex_at(in, Vec3(0, 0, 0)), b = vertex_at(in, Vec3(0, 0, 0.5)), d = vertex_at(in, Vec3(0, 0, 1));
+        box.features = {{a, b}, {b, d}};
+        const Case f = make_case(box);
+        const Reference fref = reference_of(f);
+        EditableMesh em(f.mesh, f.classes);
+        const int32_t m = bodt::split_edge(em, a, b, Vec3(0, 0, 0.2), loose_rules(), 0.0);
+        assert_true(m >= 0);
+        assert_true(em.vertex_class(m) == bodt::VertexClass::FeatureLine);
+        assert_true(em.is_feature_edge(a, m) && em.is_feature_edge(m, b) && !em.is_feature_edge(a, b));
+        const TetMesh out = check_valid(em, fref, what);
+        assert_int_equal(out.feature_edges.size(), 3);
+        assert_true(out.feature_edges.count(bodt::edge_key(a, m)) && out.feature_edges.count(bodt::edge_key(m, b)) &&
+                    out.feature_edges.count(bodt::edge_key(b, d)));
+        // a detected feature edge (another box edge) splits into detected ones
+        const int32_t e = vertex_at(in, Vec3(1, 0, 0)), g = vertex_at(in, Vec3(1, 0.5, 0));
+        assert_true(em.is_feature_edge(e, g));
+        const int32_t m2 = bodt::split_edge(em, e, g, Vec3(1, 0.25, 0), loose_rules(), 0.0);
+        assert_true(m2 >= 0 && em.is_feature_edge(e, m2) && em.is_feature_edge(m2, g));
+        assert_int_equal(check_valid(em, fref, what).feature_edges.size(), 3);  // not the caller's
+    }
+}
+
+void test_split_face(void**) {
+    const Case c = kuhn_box(2, 0.2, 4, true);
+    const Reference ref = reference_of(c);
+    const TetMesh& in = c.mesh;
+    // an interior face: find one shared by two tets, none of whose vertices is on a side
+    {
+        const char* what = "split of an interior face";
+        const FaceOwners owners = face_owners(in);
+        FaceKey face{};
+        bool found = false;
+        for (const auto& [f, own] : owners)
+            if (own.size() == 2 && !found) {
+                int inner = 0;
+                for (int32_t v : f.v) inner += c.classes.cls[v] == bodt::VertexClass::Interior;
+                if (inner == 1) {
+                    face = f;
+                    found = true;
+                }
+            }
+        assert_true(found);
+        EditableMesh em(in, c.classes);
+        assert_false(em.is_surface_face(face));
+        const Vec3 p = 0.2 * in.points[face.v[0]] + 0.3 * in.points[face.v[1]] + 0.5 * in.points[face.v[2]];
+        const int32_t m = bodt::split_face(em, face, p, loose_rules(), 0.0);
+        assert_true(m >= 0);
+        assert_true((em.point(m) - p).norm() < 1e-15);
+        assert_true(em.vertex_class(m) == bodt::VertexClass::Interior);
+        assert_near(interpolated(ref, em.parents(m)), field(p), 1e-12);
+        const TetMesh out = check_valid(em, ref, what);
+        assert_int_equal(out.num_tets(), in.num_tets() + 4);
+        expect_origins_hold_centroids(out, in, what);
+        // outside the face: refused
+        expect_refused(em, "face split outside the face", [&] {
+            return bodt::split_face(em, FaceKey::of(face.v[0], face.v[1], m), 2.0 * in.points[face.v[0]] - p, loose_rules(), 0.0) >= 0;
+        });
+    }
+    {
+        // a face on the side x = 1 (marker 2): projected, marker on all three
+        const char* what = "split of a surface face";
+        const FaceKey face = FaceKey::of(vertex_at(in, Vec3(1, 0, 0)), vertex_at(in, Vec3(1, 0.5, 0)), vertex_at(in, Vec3(1, 0.5, 0.5)));
+        EditableMesh em(in, c.classes);
+        assert_true(em.is_surface_face(face) && em.marker(face) == 2);
+        const Vec3 on = (in.points[face.v[0]] + in.points[face.v[1]] + in.points[face.v[2]]) / 3.0;
+        const int32_t m = bodt::split_face(em, face, on + Vec3(-0.1, 0, 0), loose_rules(), 0.0);
+        assert_true(m >= 0);
+        assert_true((em.point(m) - on).norm() < 1e-15);
+        assert_true(em.vertex_class(m) == bodt::VertexClass::Surface);
+        assert_near(interpolated(ref, em.parents(m)), field(on), 1e-12);
+        const TetMesh out = check_valid(em, ref, what);
+        assert_int_equal(out.num_tets(), in.num_tets() + 2);
+        int marked = 0;
+        for (const auto& [f, marker] : out.face_markers)
+            if (std::count(f.v.begin(), f.v.end(), m)) {
+                assert_int_equal(marker, 2);
+                ++marked;
+            }
+        assert_int_equal(marked, 3);
+        assert_false(out.face_markers.count(face));
+        TopologyRules keep = loose_rules();
+        keep.surface_may_change = false;
+        EditableMesh em2(in, c.classes);
+        expect_refused(em2, "surface face split, surface fixed", [&] { return bodt::split_face(em2, face, on, keep, 0.0) >= 0; });
+        expect_refused(em2, "face split on an edge",
+                       [&] { return bodt::split_face(em2, face, 0.5 * (in.points[face.v[0]] + in.points[face.v[1]]), loose_rules(), 0.0) >= 0; });
+        expect_refused(em2, "split of a face not in the mesh",
+                       [&] { return bodt::split_face(em2, FaceKey::of(face.v[0], face.v[1], vertex_at(in, Vec3(0, 1, 1))), on, loose_rules(), 0.0) >= 0; });
+    }
+}
+
+void test_parents_compose(void**) {
+    const char* what = "composed parents";
+    const Case c = kuhn_box(2, 0.2, 5, false);
+    const Reference ref = reference_of(c);
+    const TetMesh& in = c.mesh;
+    const int32_t center = only_interior(c);
+    const int32_t b = vertex_at(in, Vec3(1, 0.5, 0.5)), d = vertex_at(in, Vec3(1, 1, 1));
+    EditableMesh em(in, c.classes);
+    const int32_t m1 = bodt::split_edge(em, center, b, em.point(center) + 0.35 * (em.point(b) - em.point(center)), loose_rules(), 0.0);
+    assert_true(m1 >= 0);
+    // an edge whose endpoint is new, then a face with two new vertices
+    const Vec3 p2 = em.point(m1) + 0.6 * (em.point(d) - em.point(m1));
+    const int32_t m2 = bodt::split_edge(em, m1, d, p2, loose_rules(), 0.0);
+    assert_true(m2 >= 0);
+    assert_true(em.point(m2) == p2);
+    int32_t third = -1;
+    for (int32_t t : em.tets_of(m1))
+        for (int32_t v : em.tet(t))
+            if (v != m1 && v != m2 && third < 0 && std::count(em.tet(t).begin(), em.tet(t).end(), m2)) third = v;
+    assert_true(third >= 0);
+    const FaceKey face = FaceKey::of(m1, m2, third);
+    const Vec3 p3 = 0.25 * em.point(m1) + 0.35 * em.point(m2) + 0.4 * em.point(third);
+    const int32_t m3 = bodt::split_face(em, face, p3, loose_rules(), 0.0);
+    assert_true(m3 >= 0);
+    for (int32_t v : {m1, m2, m3}) {
+        for (const bodt::Parent& p : em.parents(v)) assert_true(p.vertex < in.num_vertices());
+        assert_near(interpolated(ref, em.parents(v)), field(em.point(v)), 1e-12);
+    }
+    assert_true(em.parents(m3).size() >= 3);
+    const TetMesh out = check_valid(em, ref, what);
+    assert_int_equal(out.new_parents.size(), 3);
+    for (int k = 0; k < 3; ++k)
+        assert_near(interpolated(ref, out.new_parents[k]), field(out.points[in.num_vertices() + k]), 1e-12);
+
+    // A second EditableMesh on the written mesh: history carries on.
+    const Case again = reopen(em);
+    EditableMesh em2(again.mesh, again.classes);
+    const int32_t n1 = in.num_vertices() + 2;  // m3, renumbered
+    assert_true(em2.point(n1) == p3);
+    const Vec3 p4 = em2.point(n1) + 0.5 * (em2.point(third) - em2.point(n1));
+    // third may be m1's neighbour on a side; any edge from the new vertex will do
+    const int32_t m4 = bodt::split_edge(em2, n1, third, p4, loose_rules(), 0.0);
+    assert_true(m4 == again.mesh.num_vertices());
+    assert_near(interpolated(ref, em2.parents(m4)), field(em2.point(m4)), 1e-12);
+    const TetMesh out2 = check_valid(em2, ref, what);
+    assert_int_equal(out2.new_parents.size(), 4);
+    for (int k = 0; k < 4; ++k)
+        assert_near(interpolated(ref, out2.new_parents[k]), field(out2.points[in.num_vertices() + k]), 1e-12);
+    // the tet history too: every origin an input tet holding the centroid
+    // (splits only)
+    expect_origins_hold_centroids(out2, in, what);
+}
+
+// ---------------------------------------------------------------- collapses
+
+// Renaming v to w in v's tets without w: true when one comes out not
+// positive (the collapse would invert it).
+bool collapse_inverts(const TetMesh& m, int32_t v, int32_t w) {
+    for (const int32_t* t = m.star_begin(v); t != m.star_end(v); ++t) {
+        Tet q = m.tets[*t];
+        if (std::count(q.begin(), q.end(), w)) continue;
+        std::replace(q.begin(), q.end(), v, w);
+        if (bodt::orient(m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]).sign <= 0) return true;
+    }
+    return false;
+}
+
+std::vector<int32_t> neighbours_of(const TetMesh& m, int32_t v) {
+    std::set<int32_t> s;
+    for (const int32_t* t = m.star_begin(v); t != m.star_end(v); ++t)
+        for (int32_t w : m.tets[*t])
+            if (w != v) s.insert(w);
+    return {s.begin(), s.end()};
+}
+
+// Every half-edge collapse of the mesh, each on a fresh copy: the ones the
+// rules exclude are refused, the others valid when done.  Counts the done
+// ones by the class of the removed vertex.
+void sweep_half_edge_collapses(const Case& c, int done[4], int& inverting) {
+    using bodt::VertexClass;
+    const Reference ref = reference_of(c);
+    const TetMesh& in = c.mesh;
+    const auto& cls = c.classes.cls;
+    for (int32_t v = 0; v < in.num_vertices(); ++v) {
+        for (int32_t w : neighbours_of(in, v)) {
+            EditableMesh em(in, c.classes);
+            const bool surface_edge = em.is_surface_edge(v, w);
+            char what[96];
+            std::snprintf(what, sizeof what, "half-edge collapse %d (class %d) -> %d", v, static_cast<int>(cls[v]), w);
+            if (cls[v] == VertexClass::Corner) {
+                expect_refused(em, what, [&] { return bodt::collapse_half_edge(em, v, w, loose_rules(), 0.0); });
+                continue;
+            }
+            if (collapse_inverts(in, v, w)) {
+                ++inverting;
+                expect_refused(em, what, [&] { return bodt::collapse_half_edge(em, v, w, loose_rules(), 0.0); });
+                continue;
+            }
+            if (cls[v] != VertexClass::Interior && !surface_edge) {
+                expect_refused(em, what, [&] { return bodt::collapse_half_edge(em, v, w, loose_rules(), 0.0); });
+                continue;
+            }
+            if (cls[v] == VertexClass::FeatureLine && !em.is_feature_edge(v, w)) {
+                expect_refused(em, what, [&] { return bodt::collapse_half_edge(em, v, w, loose_rules(), 0.0); });
+                continue;
+            }
+            const int32_t before = static_cast<int32_t>(in.num_tets());
+            if (!bodt::collapse_half_edge(em, v, w, loose_rules(), 0.0)) continue;
+            const TetMesh out = check_valid(em, ref, what);
+            CHECK(out.vflags[v] & bodt::kUnused, "vertex %d is still used", v);
+            CHECK(out.num_tets() == before - edge_degree(in, v, w), "%d tets left of %d", out.num_tets(), before);
+            ++done[static_cast<int>(cls[v])];
+        }
+    }
+}
+
+void test_collapse(void**) {
+    using bodt::VertexClass;
+    const Case c = kuhn_box(3, 0.25, 6, false);
+    const Reference ref = reference_of(c);
+    const TetMesh& in = c.mesh;
+    const auto& cls = c.classes.cls;
+    int done[4] = {0, 0, 0, 0}, inverting = 0;
+    sweep_half_edge_collapses(c, done, inverting);
+    sweep_half_edge_collapses(kuhn_box(3, 0.25, 6, true), done, inverting);  // each side its own marker
+    // some of each kind went through, and some would have inverted
+    print_message("half-edge collapses done: interior %d, surface %d, feature line %d; %d would invert\n", done[0], done[1],
+                  done[2], inverting);
+    assert_true(done[0] > 10 && done[1] > 10 && done[2] > 0);
+    assert_int_equal(done[3], 0);
+    assert_true(inverting > 10);
+
+    // A fixed vertex stays.
+    {
+        test_mesh tm{};
+        assert_int_equal(tm_make_cubes(&tm, 3, 1.0, nullptr, nullptr, 0.25, 6), 0);
+        Input box = from_test_mesh(tm, nullptr);
+        tm_free(&tm);
+        int32_t inner = -1;
+        for (int32_t v = 0; v < in.num_vertices() && inner < 0; ++v)
+            if (cls[v] == VertexClass::Interior) inner = v;
+        box.fixed = {inner};
+        const Case f = make_case(box);
+        assert_true(f.classes.cls[inner] == VertexClass::Fixed);
+        for (int32_t w : neighbours_of(f.mesh, inner)) {
+            EditableMesh em(f.mesh, f.classes);
+            expect_refused(em, "collapse of a fixed vertex", [&] { return bodt::collapse_half_edge(em, inner, w, loose_rules(), 0.0); });
+            // collapse_edge keeps it: the neighbour goes into it, or nothing
+            const int32_t kept = bodt::collapse_edge(em, inner, w, loose_rules(), 0.0);
+            assert_true(kept == -1 || kept == inner);
+            if (kept >= 0) {
+                const TetMesh out = check_valid(em, reference_of(f), "collapse into a fixed vertex");
+                assert_true(out.points[inner] == f.mesh.points[inner] && (out.vflags[inner] & bodt::kFixed));
+            }
+        }
+    }
+
+    // collapse_edge: the endpoint of higher class stays put; equal classes
+    // meet at the midpoint; two corners never.
+    int kept_higher = 0, midpoints = 0;
+    for (int32_t a = 0; a < in.num_vertices(); ++a)
+        for (int32_t b : neighbours_of(in, a)) {
+            if (b < a) continue;
+            EditableMesh em(in, c.classes);
+            const auto rank = [&](int32_t v) { return std::min(static_cast<int>(cls[v]), 3); };
+            if (rank(a) == 3 && rank(b) == 3) {
+                expect_refused(em, "collapse of two corners", [&] { return bodt::collapse_edge(em, a, b, loose_rules(), 0.0) >= 0; });
+                continue;
+            }
+            const Vec3 pa = in.points[a], pb = in.points[b];
+            const int32_t kept = bodt::collapse_edge(em, a, b, loose_rules(), 0.0);
+            if (kept < 0) continue;
+            const char* what = "collapse_edge";
+            const TetMesh out = check_valid(em, ref, what);
+            const int32_t gone = kept == a ? b : a;
+            CHECK(out.vflags[gone] & bodt::kUnused, "vertex %d is still used", gone);
+            if (rank(a) != rank(b)) {
+                CHECK(rank(kept) > rank(gone), "kept %d of class %d, removed %d of class %d", kept, rank(kept), gone, rank(gone));
+                CHECK(out.points[kept] == in.points[kept], "the kept vertex moved");
+                ++kept_higher;
+            } else {
+                CHECK((out.points[kept] - 0.5 * (pa + pb)).norm() < 1e-15, "not at the midpoint");
+                ++midpoints;
+            }
+        }
+    assert_true(kept_higher > 10 && midpoints > 10);
+}
+
+// --------------------------------------------------------------- regions
+
+int region_halves(int i, int, int, int n, void*) { return 2 * i >= n; }
+
+Input two_region_box(int n, uint64_t seed) {
+    test_mesh tm{};
+    int32_t* regions = nullptr;
+    assert_int_equal(tm_make_cubes_sliding(&tm, n, 1.0, nullptr, region_halves, nullptr, 0.3, 0.3, seed, nullptr, &regions), 0);
+    Input in = from_test_mesh(tm, regions);
+    std::free(regions);
+    tm_free(&tm);
+    return in;
+}
+
+void test_two_regions(void**) {
+    const Case c = make_case(two_region_box(2, 7));
+    const Reference ref = reference_of(c);
+    const TetMesh& in = c.mesh;
+    const FaceOwners owners = face_owners(in);
+    int flips = 0, removals = 0, edge_splits = 0, face_splits = 0;
+    for (const auto& [f, own] : owners) {
+        if (own.size() != 2 || in.regions[own[0].first] == in.regions[own[1].first]) continue;
+        {
+            EditableMesh em(in, c.classes);
+            assert_true(em.is_surface_face(f));
+            expect_refused(em, "2-3 across the interface", [&] { return bodt::flip_23(em, f, loose_rules(), 0.0); });
+            ++flips;
+        }
+        for (int k = 0; k < 3; ++k) {
+            const int32_t a = f.v[k], b = f.v[(k + 1) % 3];
+            EditableMesh em(in, c.classes);
+            expect_refused(em, "edge removal on the interface", [&] { return bodt::remove_edge(em, a, b, loose_rules(), 0.0); });
+            ++removals;
+            const char* what = "split of an interface edge";
+            const int32_t m = bodt::split_edge(em, a, b, 0.5 * (in.points[a] + in.points[b]), loose_rules(), 0.0);
+            if (m < 0) continue;
+            assert_true(em.vertex_class(m) != bodt::VertexClass::Interior);
+            check_valid(em, ref, what);
+            ++edge_splits;
+        }
+        EditableMesh em(in, c.classes);
+        const Vec3 p = (in.points[f.v[0]] + in.points[f.v[1]] + in.points[f.v[2]]) / 3.0;
+        const int32_t m = bodt::split_face(em, f, p, loose_rules(), 0.0);
+        if (m < 0) continue;
+        const char* what = "split of an interface face";
+        assert_true(em.vertex_class(m) == bodt::VertexClass::Surface);
+        const TetMesh out = check_valid(em, ref, what);
+        assert_int_equal(out.num_tets(), in.num_tets() + 4);
+        ++face_splits;
+    }
+    assert_true(flips >= 8 && removals >= 24 && edge_splits >= 12 && face_splits >= 8);
+}
+
+// ------------------------------------------------------- random operations
+
+enum OpKind { kRemoveEdge, kFlip23, kSplitEdge, kSplitFace, kCollapseHalf, kCollapseEdge, kNumOps };
+const char* const kOpName[kNumOps] = {"remove_edge", "flip_23", "split_edge", "split_face", "collapse_half_edge", "collapse_edge"};
+
+// One operation of the given kind somewhere random; true if it changed the mesh.
+bool random_op(EditableMesh& em, std::mt19937& rng, OpKind op, const TopologyRules& rules) {
+    std::uniform_int_distribution<int32_t> pick(0, em.tet_capacity() - 1);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int32_t t;
+    do t = pick(rng);
+    while (!em.alive(t));
+    const Tet q = em.tet(t);
+    const auto& e = bodt::kEdgeVertex[std::uniform_int_distribution<int>(0, 5)(rng)];
+    const auto& f = bodt::kFaceVertex[std::uniform_int_distribution<int>(0, 3)(rng)];
+    const bool swap = u(rng) < 0.5;
+    const int32_t a = q[e[swap]], b = q[e[!swap]];
+    const Vec3 pa = em.point(a), pb = em.point(b);
+    // sometimes off the edge or face (projected there on the surface)
+    Vec3 off = Vec3::Zero();
+    if (u(rng) < 0.5)
+        for (int k = 0; k < 3; ++k) off[k] = 0.2 * (u(rng) - 0.5) * (pb - pa).norm();
+    switch (op) {
+        case kRemoveEdge: return bodt::remove_edge(em, a, b, rules, 0.0);
+        case kFlip23: return bodt::flip_23(em, FaceKey::of(q[f[0]], q[f[1]], q[f[2]]), rules, 0.0);
+        case kSplitEdge: return bodt::split_edge(em, a, b, pa + (0.15 + 0.7 * u(rng)) * (pb - pa) + off, rules, 0.0) >= 0;
+        case kSplitFace: {
+            double w[3], sum = 0.0;
+            for (double& x : w) sum += x = 0.2 + u(rng);
+            const Vec3 p = (w[0] * em.point(q[f[0]]) + w[1] * em.point(q[f[1]]) + w[2] * em.point(q[f[2]])) / sum;
+            return bodt::split_face(em, FaceKey::of(q[f[0]], q[f[1]], q[f[2]]), p + off, rules, 0.0) >= 0;
+        }
+        case kCollapseHalf: return bodt::collapse_half_edge(em, a, b, rules, 0.0);
+        case kCollapseEdge: return bodt::collapse_edge(em, a, b, rules, 0.0) >= 0;
+        default: return false;
+    }
+}
+
+int32_t alive_tets(const EditableMesh& em) {
+    int32_t n = 0;
+    for (int32_t t = 0; t < em.tet_capacity(); ++t) n += em.alive(t);
+    return n;
+}
+
+// Splits while the mesh is small, collapses and removals while it is big.
+OpKind random_kind(std::mt19937& rng, int32_t tets, int32_t start) {
+    const int k = std::uniform_int_distribution<int>(0, kNumOps - 1)(rng);
+    if (tets > 2 * start && (k == kSplitEdge || k == kSplitFace)) return k == kSplitEdge ? kCollapseHalf : kCollapseEdge;
+    if (tets < start / 2 && (k == kCollapseHalf || k == kCollapseEdge)) return k == kCollapseHalf ? kSplitEdge : kSplitFace;
+    return static_cast<OpKind>(k);
+}
+
+void test_rollback(void**) {
+    const char* what = "rollback";
+    const Case c = kuhn_box(3, 0.25, 8, true);
+    const Reference ref = reference_of(c);
+    std::mt19937 rng(99);
+    for (int round = 0; round < 5; ++round) {
+        EditableMesh em(c.mesh, c.classes);
+        // a few committed changes first: rollback must not reach past commit()
+        int pre = 0;
+        while (pre < 5) pre += random_op(em, rng, static_cast<OpKind>(pre % kNumOps), loose_rules());
+        em.commit();
+        const TetMesh s0 = written(em);
+        const int32_t cap0 = em.tet_capacity(), nv0 = em.num_vertices();
+        const size_t m0 = em.checkpoint();
+        int done = 0;
+        for (int i = 0; i < 40; ++i) done += random_op(em, rng, static_cast<OpKind>(i % kNumOps), loose_rules());
+        const TetMesh s1 = written(em);
+        const size_t m1 = em.checkpoint();
+        for (int i = 0; i < 40; ++i) done += random_op(em, rng, static_cast<OpKind>((i + 3) % kNumOps), loose_rules());
+        assert_true(done > 20);
+        check_valid(em, ref, what);
+        em.rollback(m1);
+        expect_same(written(em), s1, "rollback to the inner checkpoint");
+        check_valid(em, ref, what);
+        em.rollback(m0);
+        expect_same(written(em), s0, "rollback to the outer checkpoint");
+        assert_int_equal(em.tet_capacity(), cap0);
+        assert_int_equal(em.num_vertices(), nv0);
+        check_valid(em, ref, what);
+        // and the mesh goes on working
+        int after = 0;
+        for (int i = 0; i < 30; ++i) after += random_op(em, rng, static_cast<OpKind>(i % kNumOps), loose_rules());
+        assert_true(after > 5);
+        check_valid(em, ref, what);
+    }
+}
+
+int keep_l_shape(int i, int j, int, int n, void*) { return !(2 * i >= n && 2 * j >= n); }
+
+struct RandomCase {
+    const char* name;
+    Input input;
+};
+
+std::vector<RandomCase> random_cases() {
+    std::vector<RandomCase> out;
+    {
+        // jittered box, sides sliding in their planes, each its own marker
+        test_mesh tm{};
+        assert_int_equal(tm_make_cubes_sliding(&tm, 3, 1.0, nullptr, nullptr, nullptr, 0.3, 0.3, 21, nullptr, nullptr), 0);
+        Input in = from_test_mesh(tm, nullptr);
+        tm_free(&tm);
+        mark_box_sides(in, 1.0);
+        out.push_back({"jittered box", in});
+    }
+    {
+        Input in = two_region_box(3, 22);
+        mark_faces(in, 7, [](const Vec3& p) { return p.x() == 0.0; });
+        out.push_back({"two regions", in});
+    }
+    {
+        // L-shape: z = 0 marked, the diagonal x = y on it a caller feature line
+        test_mesh tm{};
+        assert_int_equal(tm_make_cubes(&tm, 4, 1.0, keep_l_shape, nullptr, 0.25, 23), 0);
+        Input in = from_test_mesh(tm, nullptr);
+        tm_free(&tm);
+        mark_faces(in, 5, [](const Vec3& p) { return p.z() == 0.0; });
+        std::set<std::pair<int32_t, int32_t>> diag;
+        const auto on = [&](int32_t v) { return in.points[v].z() == 0.0 && in.points[v].x() == in.points[v].y(); };
+        for (const Tet& q : in.tets)
+            for (const auto& e : bodt::kEdgeVertex)
+                if (on(q[e[0]]) && on(q[e[1]])) diag.insert(std::minmax(q[e[0]], q[e[1]]));
+        assert_int_equal(diag.size(), 2);
+        for (const auto& [a, b] : diag) in.features.push_back({a, b});
+        out.push_back({"L-shape", in});
+    }
+    {
+        // a box with a marked inner face (a fin) at z = 1/3
+        test_mesh tm{};
+        assert_int_equal(tm_make_cubes(&tm, 3, 1.0, nullptr, nullptr, 0.0, 24), 0);
+        Input in = from_test_mesh(tm, nullptr);
+        tm_free(&tm);
+        double z = 1.0;
+        for (const Vec3& p : in.points)
+            if (p.z() > 0.0) z = std::min(z, p.z());
+        mark_faces(in, 9, [z](const Vec3& p) { return p.z() == z; });
+        mark_faces(in, 1, [](const Vec3& p) { return p.x() == 0.0; });
+        out.push_back({"fin", in});
+    }
+    return out;
+}
+
+void test_random_operations(void**) {
+    const auto start_time = std::chrono::steady_clock::now();
+    const int attempts_per_case = 2500;
+    int total_done = 0;
+    for (const RandomCase& rc : random_cases()) {
+        const char* what = rc.name;
+        Case c = make_case(rc.input);
+        const Reference ref = reference_of(c);
+        auto em = std::make_unique<EditableMesh>(c.mesh, c.classes);
+        std::mt19937 rng(1234);
+        int tried[kNumOps] = {}, done[kNumOps] = {}, rollbacks = 0, reopened = 0;
+        const int32_t start = c.mesh.num_tets();
+        int32_t tets = start;
+        for (int i = 0; i < attempts_per_case; ++i) {
+            const OpKind op = random_kind(rng, tets, start);
+            ++tried[op];
+            const TetMesh before = i % 97 == 0 ? written(*em) : TetMesh();
+            const size_t mark = em->checkpoint();
+            const bool changed = random_op(*em, rng, op, loose_rules());
+            if (!changed) {
+                CHECK(em->checkpoint() == mark, "refused %s logged changes", kOpName[op]);
+                continue;
+            }
+            ++done[op];
+            char when[160];
+            std::snprintf(when, sizeof when, "%s: %s (attempt %d)", rc.name, kOpName[op], i);
+            const TetMesh m = check_valid(*em, ref, when);
+            tets = m.num_tets();
+            if (i % 97 == 0) {
+                // undo this one, compare, redo nothing
+                em->rollback(mark);
+                expect_same(written(*em), before, when);
+                ++rollbacks;
+                tets = alive_tets(*em);
+            }
+            if ((done[0] + done[1] + done[2] + done[3] + done[4] + done[5]) % 150 == 0) {
+                // a fresh EditableMesh on the written mesh: the history goes on
+                c = reopen(*em);
+                em = std::make_unique<EditableMesh>(c.mesh, c.classes);
+                ++reopened;
+            }
+        }
+        int sum = 0;
+        for (int k = 0; k < kNumOps; ++k) {
+            CHECK(done[k] >= 20, "%s: only %d of %d done", kOpName[k], done[k], tried[k]);
+            sum += done[k];
+        }
+        total_done += sum;
+        print_message("random operations, %s: %d of %d done (", rc.name, sum, attempts_per_case);
+        for (int k = 0; k < kNumOps; ++k) print_message("%s %d/%d%s", kOpName[k], done[k], tried[k], k + 1 < kNumOps ? ", " : "");
+        print_message("), %d rolled back, %d reopened, %d tets at the end\n", rollbacks, reopened, tets);
+        assert_true(rollbacks > 0 && reopened > 0);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    print_message("random operations: %d changes checked in %.2f s\n", total_done, seconds);
+    assert_true(total_done >= 2000);
+}
+
+// ----------------------------------------------------------- bad tets
+
+void test_min_dihedral_sine(void**) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int checked = 0;
+    for (int i = 0; i < 2000; ++i) {
+        bodt::TetPoints p{Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng)),
+                          Vec3(u(rng), u(rng), u(rng))};
+        if (i % 3 == 0) p[3] = (p[0] + p[1] + p[2]) / 3.0 + 1e-3 * Vec3(u(rng), u(rng), u(rng));  // flat-ish
+        const double o = orient6(p[0], p[1], p[2], p[3]);
+        if (o < 0) {
+            assert_true(bodt::min_dihedral_sine(p) == -1.0);
+            std::swap(p[2], p[3]);
+        }
+        if (bodt::orient(p[0], p[1], p[2], p[3]).sign <= 0) continue;
+        double want = 1.0;
+        for (double a : bodt::dihedral_angles(p)) want = std::min(want, std::sin(a / kDeg));
+        assert_near(bodt::min_dihedral_sine(p), want, 1e-9);
+        ++checked;
+    }
+    assert_true(checked > 1500);
+    // flat: -1
+    assert_true(bodt::min_dihedral_sine({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}) == -1.0);
+}
+
+// The bad tets of the insertion test, each with its neighbours: a mesh and
+// the index of the bad tet in it.
+struct BadCase {
+    const char* name;
+    Input input;
+    bodt::BadTetKind kind;
+};
+
+// A sliver A C / B D (A = 2, B = 3, C = 4, D = 5) in an octahedron with
+// apexes T = 0 above and U = 1 below: AC and BD are interior edges.
+BadCase sliver_case() {
+    const double h = 0.04;
+    Input in;
+    in.points = {Vec3(0.02, 0.01, 1), Vec3(-0.01, 0.02, -1), Vec3(-1, 0, -h), Vec3(0, -1, h), Vec3(1, 0, -h), Vec3(0, 1, h)};
+    add_tet(in, 2, 3, 4, 5);  // the sliver
+    add_tet(in, 0, 3, 5, 2);
+    add_tet(in, 0, 3, 5, 4);
+    add_tet(in, 1, 2, 4, 3);
+    add_tet(in, 1, 2, 4, 5);
+    return {"sliver", in, bodt::BadTetKind::Sliver};
+}
+
+// A cap: A = 2 just above the middle of B C D (3, 4, 5), inside a bipyramid
+// T = 0 / U = 1 over B C D.
+BadCase cap_case() {
+    Input in;
+    in.points = {Vec3(0.02, 0, 1), Vec3(0, 0.03, -1), Vec3(0.05, -0.02, 0.06)};
+    for (const Vec3& p : regular_ring(3, 1.0)) in.points.push_back(p);
+    add_tet(in, 2, 3, 4, 5);  // the cap
+    add_tet(in, 1, 3, 4, 5);
+    add_tet(in, 0, 2, 3, 4);
+    add_tet(in, 0, 2, 4, 5);
+    add_tet(in, 0, 2, 5, 3);
+    return {"cap", in, bodt::BadTetKind::Cap};
+}
+
+// A spade: A = 2 over the edge B C (3, 4) of B C D (D = 5), folded at BC;
+// U = 0 below the two faces on BC, T = 1 above the two on AD.
+BadCase spade_case() {
+    Input in;
+    in.points = {Vec3(0.03, -0.3, -1), Vec3(-0.02, 0.3, 1), Vec3(0.1, -0.05, 0.06), Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+    add_tet(in, 2, 3, 4, 5);  // the spade
+    add_tet(in, 0, 3, 4, 5);
+    add_tet(in, 0, 2, 3, 4);
+    add_tet(in, 1, 2, 3, 5);
+    add_tet(in, 1, 2, 4, 5);
+    return {"spade", in, bodt::BadTetKind::Spade};
+}
+
+bodt::TetPoints points_of(const Input& in, const Tet& q) {
+    return {in.points[q[0]], in.points[q[1]], in.points[q[2]], in.points[q[3]]};
+}
+
+int local_index(const Tet& q, int32_t v) { return static_cast<int>(std::find(q.begin(), q.end(), v) - q.begin()); }
+
+void test_classify_bad_tet(void**) {
+    {
+        const BadCase b = sliver_case();
+        const Tet& q = b.input.tets[0];
+        const bodt::BadTet bad = bodt::classify_bad_tet(points_of(b.input, q), 15.0);
+        assert_true(bad.kind == bodt::BadTetKind::Sliver);
+        // the diagonals A C (2, 4) and B D (3, 5), split where they come closest
+        std::set<std::set<int32_t>> diagonals{{q[bad.edge[0]], q[bad.edge[1]]}, {q[bad.edge2[0]], q[bad.edge2[1]]}};
+        assert_true((diagonals == std::set<std::set<int32_t>>{{2, 4}, {3, 5}}));
+        const Vec3 low(0, 0, -0.04), high(0, 0, 0.04);
+        assert_true(((bad.point - low).norm() < 1e-12 && (bad.point2 - high).norm() < 1e-12) ||
+                    ((bad.point - high).norm() < 1e-12 && (bad.point2 - low).norm() < 1e-12));
+    }
+    {
+        const BadCase b = cap_case();
+        const Tet& q = b.input.tets[0];
+        const bodt::BadTet bad = bodt::classify_bad_tet(points_of(b.input, q), 15.0);
+        assert_true(bad.kind == bodt::BadTetKind::Cap);
+        assert_int_equal(bad.apex, local_index(q, 2));
+        assert_true((bad.point - Vec3(0.05, -0.02, 0)).norm() < 1e-12);  // A's foot on B C D
+    }
+    {
+        const BadCase b = spade_case();
+        const Tet& q = b.input.tets[0];
+        const bodt::BadTet bad = bodt::classify_bad_tet(points_of(b.input, q), 15.0);
+        assert_true(bad.kind == bodt::BadTetKind::Spade);
+        assert_int_equal(bad.apex, local_index(q, 2));
+        assert_true((std::set<int32_t>{q[bad.edge[0]], q[bad.edge[1]]} == std::set<int32_t>{3, 4}));
+        assert_true((bad.point - Vec3(0.1, 0, 0)).norm() < 1e-12);  // A's foot on B C
+    }
+    // good, and a needle (short edge)
+    const double s = 1.0 / std::sqrt(2.0);
+    const bodt::TetPoints regular{Vec3(1, 0, -s), Vec3(-1, 0, -s), Vec3(0, 1, s), Vec3(0, -1, s)};
+    assert_true(bodt::classify_bad_tet(regular, 15.0).kind == bodt::BadTetKind::Good);
+    const bodt::TetPoints needle{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0.8, 0), Vec3(0.52, 0.8, 0.05)};
+    assert_true(bodt::classify_bad_tet(needle, 15.0).kind == bodt::BadTetKind::ShortEdge);
+}
+
+// min(smallest angle, 180 - largest angle) over the mesh, in degrees.
+double worst_angle(const TetMesh& m) {
+    double w = 90.0;
+    for (int32_t t = 0; t < m.num_tets(); ++t) {
+        const auto r = bodt::dihedral_range(m.tet_points(t), true);
+        w = std::min({w, r.min, 180.0 - r.max});
+    }
+    return w;
+}
+
+void test_insertion(void**) {
+    for (const BadCase& b : {sliver_case(), cap_case(), spade_case()}) {
+        const char* what = b.name;
+        const Case c = make_case(b.input);
+        const Reference ref = reference_of(c);
+        const bodt::BadTet bad = bodt::classify_bad_tet(c.mesh.tet_points(0), 15.0);
+        CHECK(bad.kind == b.kind, "classified as %d", static_cast<int>(bad.kind));
+        const double before = worst_angle(c.mesh);
+        CHECK(before < 15.0, "worst angle %g", before);
+        EditableMesh em(c.mesh, c.classes);
+        bodt::TopologySettings s;
+        s.rules = loose_rules();
+        s.flip = false;
+        s.insert = true;
+        const bodt::TopologyCounts counts = bodt::improve_topology(em, s);
+        const TetMesh out = check_valid(em, ref, what);
+        const double after = worst_angle(out);
+        print_message("insertion, %s: %d vertices inserted, worst angle %.2f -> %.2f degrees\n", b.name, counts.inserted,
+                      before, after);
+        CHECK(counts.inserted == (b.kind == bodt::BadTetKind::Sliver ? 2 : 1), "%d vertices inserted", counts.inserted);
+        CHECK(counts.flips == 0 && counts.collapsed == 0, "flips %d, collapses %d", counts.flips, counts.collapsed);
+        CHECK(out.num_vertices() == c.mesh.num_vertices() + counts.inserted, "%d vertices", out.num_vertices());
+        CHECK(after > before + 1.0, "worst angle %g -> %g", before, after);
+        // the new vertices interpolate the input where they ended
+        for (size_t k = 0; k < out.new_parents.size(); ++k)
+            CHECK(std::fabs(interpolated(ref, out.new_parents[k]) - field(out.points[out.num_input_vertices() + k])) <= 1e-12,
+                  "new vertex %zu: parents give %.17g, the field is %.17g", k, interpolated(ref, out.new_parents[k]),
+                  field(out.points[out.num_input_vertices() + k]));
+        // the improvement is committed
+        CHECK(em.checkpoint() == 0, "journal left with %zu entries", em.checkpoint());
+    }
+}
+
+void test_flip_pass(void**) {
+    const char* what = "flip pass";
+    test_mesh tm{};
+    assert_int_equal(tm_make_cubes_sliding(&tm, 4, 1.0, nullptr, nullptr, nullptr, 0.35, 0.35, 31, nullptr, nullptr), 0);
+    Input in = from_test_mesh(tm, nullptr);
+    tm_free(&tm);
+    mark_box_sides(in, 1.0);
+    const Case c = make_case(in);
+    const Reference ref = reference_of(c);
+    EditableMesh em(c.mesh, c.classes);
+    bodt::TopologySettings s;
+    s.rules = loose_rules();
+    s.insert = false;
+    const double before = worst_sine(c.mesh);
+    const bodt::TopologyCounts counts = bodt::improve_topology(em, s);
+    const TetMesh out = check_valid(em, ref, what);
+    const double after = worst_sine(out);
+    print_message("flip pass: %d flips, worst sine %.4f -> %.4f\n", counts.flips, before, after);
+    assert_true(counts.flips > 0 && counts.inserted == 0);
+    assert_true(after >= before);
+    // a second pass on a fixed surface never flips a surface edge
+    const Case again = reopen(em);
+    EditableMesh em2(again.mesh, again.classes);
+    s.rules.surface_may_change = false;
+    bodt::improve_topology(em2, s);
+    const TetMesh out2 = check_valid(em2, ref, what);
+    std::set<FaceKey> surf_before, surf_after;
+    for (const auto& [f, own] : face_owners(out))
+        if (own.size() == 1) surf_before.insert(f);
+    for (const auto& [f, own] : face_owners(out2))
+        if (own.size() == 1) surf_after.insert(f);
+    assert_true(surf_before == surf_after);
+    assert_true(worst_sine(out2) >= after);
+}
+
+// A Kuhn box with one interior vertex pulled most of the way to an interior
+// neighbour: short edges, collapsed by improve_topology.
+void test_collapse_pass(void**) {
+    const char* what = "collapse pass";
+    test_mesh tm{};
+    assert_int_equal(tm_make_cubes(&tm, 3, 1.0, nullptr, nullptr, 0.1, 41), 0);
+    Input in = from_test_mesh(tm, nullptr);
+    std::vector<unsigned char> boundary(tm.boundary, tm.boundary + tm.nverts);
+    tm_free(&tm);
+    bool pulled = false;
+    for (const Tet& q : in.tets) {
+        for (const auto& e : bodt::kEdgeVertex) {
+            const int32_t v = q[e[0]], w = q[e[1]];
+            if (boundary[v] || boundary[w]) continue;
+            Input trial = in;
+            trial.points[v] = in.points[w] + 0.12 * (in.points[v] - in.points[w]);
+            bool positive = true;
+            for (const Tet& r : trial.tets)
+                positive = positive && orient6(trial.points[r[0]], trial.points[r[1]], trial.points[r[2]], trial.points[r[3]]) > 0;
+            if (!positive) continue;
+            in = trial;
+            pulled = true;
+            break;
+        }
+        if (pulled) break;
+    }
+    assert_true(pulled);
+    mark_box_sides(in, 1.0);
+    const Case c = make_case(in);
+    const Reference ref = reference_of(c);
+    EditableMesh em(c.mesh, c.classes);
+    bodt::TopologySettings s;
+    s.rules = loose_rules();
+    s.flip = false;
+    s.insert = false;
+    s.collapse = true;
+    const double before = worst_sine(c.mesh);
+    const bodt::TopologyCounts counts = bodt::improve_topology(em, s);
+    const TetMesh out = check_valid(em, ref, what);
+    const double after = worst_sine(out);
+    print_message("collapse pass: %d collapsed, worst sine %.4f -> %.4f\n", counts.collapsed, before, after);
+    assert_true(counts.collapsed > 0 && counts.flips == 0 && counts.inserted == 0);
+    assert_true(out.num_tets() < c.mesh.num_tets());
+    assert_true(after > before);
+}
+
+}  // namespace
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_remove_edge_3_2),
+        cmocka_unit_test(test_flip_23),
+        cmocka_unit_test(test_remove_edge_4_4),
+        cmocka_unit_test(test_remove_edge_optimal),
+        cmocka_unit_test(test_boundary_2_2),
+        cmocka_unit_test(test_split_edge),
+        cmocka_unit_test(test_split_face),
+        cmocka_unit_test(test_parents_compose),
+        cmocka_unit_test(test_collapse),
+        cmocka_unit_test(test_two_regions),
+        cmocka_unit_test(test_rollback),
+        cmocka_unit_test(test_random_operations),
+        cmocka_unit_test(test_min_dihedral_sine),
+        cmocka_unit_test(test_classify_bad_tet),
+        cmocka_unit_test(test_insertion),
+        cmocka_unit_test(test_flip_pass),
+        cmocka_unit_test(test_collapse_pass),
+    };
+    return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
