@@ -353,7 +353,11 @@ enum bodt_param {
     /* double, degrees, default 15: a tet with a dihedral angle below this or
      * above 180 minus this is bad: BODT_OP_INSERT breaks bad spades, caps
      * and slivers, BODT_OP_COLLAPSE bad tets with a short edge. */
-    BODT_PARAM_BAD_ANGLE = 10
+    BODT_PARAM_BAD_ANGLE = 10,
+    /* int 0/1, default 0: 1 adds paper 002's conditions (sec. 3.4.4) to
+     * every flip: some tet it replaces is not Delaunay and every tet it
+     * makes is (with respect to the vertices involved). */
+    BODT_PARAM_DELAUNAY_FLIPS = 11
 };
 
 /*

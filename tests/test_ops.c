@@ -14,7 +14,7 @@
  * be checked against its plane, and the area of each side summed.  Validity
  * is checked with the test's own orientation test on get_vertices/get_tets.
  *
- *   params        OPS, KEEP_SURFACE, BAD_ANGLE: defaults, set/get, range and
+ *   params        OPS, KEEP_SURFACE, BAD_ANGLE, DELAUNAY_FLIPS: defaults, set/get, range and
  *                 type refusals with a message, refused sets keep the value
  *   default ops   BODT_MODE_BODT, default ops, several bad meshes (some or
  *                 all input vertices fixed, two regions, negatively oriented
@@ -633,6 +633,16 @@ static void test_params(void **state) {
     assert_int_equal(bodt_set_param_int(h, BODT_PARAM_KEEP_SURFACE, 0), BODT_OK);
     assert_int_equal(bodt_get_param_int(h, BODT_PARAM_KEEP_SURFACE, &iv), BODT_OK);
     assert_int_equal(iv, 0);
+    /* DELAUNAY_FLIPS: 0 (default) or 1 */
+    assert_int_equal(bodt_get_param_int(h, BODT_PARAM_DELAUNAY_FLIPS, &iv), BODT_OK);
+    assert_int_equal(iv, 0);
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_DELAUNAY_FLIPS, 1), BODT_OK);
+    assert_int_equal(bodt_get_param_int(h, BODT_PARAM_DELAUNAY_FLIPS, &iv), BODT_OK);
+    assert_int_equal(iv, 1);
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_DELAUNAY_FLIPS, 2), E);
+    assert_contains(bodt_mesh_last_error(h), "BODT_PARAM_DELAUNAY_FLIPS");
+    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_DELAUNAY_FLIPS, 1.0), E);
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_DELAUNAY_FLIPS, 0), BODT_OK);
     /* BAD_ANGLE: degrees in [0, 60] */
     static const double good_angles[] = {0.0, 60.0, 30.5, 1e-9};
     for (size_t k = 0; k < sizeof good_angles / sizeof *good_angles; ++k) {
@@ -669,8 +679,8 @@ static void test_params(void **state) {
     assert_int_equal(bodt_get_param_int(h, BODT_PARAM_OPS, NULL), E);
     assert_int_equal(bodt_get_param_double(h, BODT_PARAM_BAD_ANGLE, NULL), E);
     /* the key after the last is unknown */
-    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_BAD_ANGLE + 1, 0), E);
-    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_BAD_ANGLE + 1, 0.0), E);
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_DELAUNAY_FLIPS + 1, 0), E);
+    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_DELAUNAY_FLIPS + 1, 0.0), E);
 }
 
 /* ----------------------------------------------------------- default ops */

@@ -18,7 +18,9 @@
 //                        origin holds its centroid
 //   flip_23              2 tets -> 3, and edge removal back gives the same
 //                        tets; refused across a region interface, on a
-//                        marked face and when the pair is not convex
+//                        marked face and when the pair is not convex; with
+//                        the Delaunay conditions only a non-Delaunay pair
+//                        flips, and not back
 //   remove_edge_4_4      the octahedron's axis: the better of the two
 //                        diagonals, computed here
 //   remove_edge_optimal  rings of 3..7 tets: the result's worst sine is the
@@ -81,7 +83,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -380,10 +381,17 @@ TetMesh check_valid(const EditableMesh& em, const Reference& ref, const char* wh
             across[own[0]] = -1;
             continue;
         }
-        const Vec3 &a = m.points[f.v[0]], &b = m.points[f.v[1]], &c = m.points[f.v[2]];
-        const int s0 = bodt::orient(a, b, c, m.points[m.tets[own[0].first][own[0].second]]).sign;
-        const int s1 = bodt::orient(a, b, c, m.points[m.tets[own[1].first][own[1].second]]).sign;
-        CHECK(s0 * s1 < 0, "tets %d and %d lie on one side of face (%d %d %d)", own[0].first, own[1].first, f.v[0],
+        // Both tets are positive (checked above): they lie on opposite sides
+        // exactly when their outward faces turn opposite ways.
+        const auto outward = [&m](std::pair<int32_t, int> ti) {
+            const Tet& q = m.tets[ti.first];
+            const auto& k = bodt::kFaceVertex[ti.second];
+            return std::array<int32_t, 3>{q[k[0]], q[k[1]], q[k[2]]};
+        };
+        const auto f0 = outward(own[0]), f1 = outward(own[1]);
+        bool same_turn = false;
+        for (int r = 0; r < 3; ++r) same_turn |= f0[0] == f1[r] && f0[1] == f1[(r + 1) % 3];
+        CHECK(!same_turn, "tets %d and %d lie on one side of face (%d %d %d)", own[0].first, own[1].first, f.v[0],
               f.v[1], f.v[2]);
         across[own[0]] = own[1].first;
         across[own[1]] = own[0].first;
@@ -619,6 +627,27 @@ void test_flip_23(void**) {
         EditableMesh em2(ok.mesh, ok.classes);
         expect_refused(em2, "2-3 below must_exceed", [&] { return bodt::flip_23(em2, shared, loose_rules(), 0.99); });
     }
+    {
+        // paper 002 sec. 3.4.4: with the Delaunay conditions a pair whose
+        // apexes lie outside each other's circumsphere (far apart) stays,
+        // while the close pair above (apex 1 inside the circumsphere of
+        // tet 0) flips
+        TopologyRules delaunay = loose_rules();
+        delaunay.delaunay = true;
+        Input far = in;
+        far.points[0] = Vec3(0.1, 0, 3.0);
+        far.points[1] = Vec3(-0.1, 0.1, -3.0);
+        const Case c = make_case(far);
+        EditableMesh em(c.mesh, c.classes);
+        expect_refused(em, "2-3 of a Delaunay pair", [&] { return bodt::flip_23(em, shared, delaunay, 0.0); });
+        assert_true(bodt::flip_23(em, shared, loose_rules(), 0.0));  // the flip itself is valid
+        const Case near = make_case(in);
+        EditableMesh em2(near.mesh, near.classes);
+        assert_true(bodt::flip_23(em2, shared, delaunay, 0.0));
+        check_valid(em2, reference_of(near), "2-3 Delaunay");
+        // and the 3-2 flip back would make a non-Delaunay pair: refused
+        expect_refused(em2, "3-2 to a non-Delaunay pair", [&] { return bodt::remove_edge(em2, 0, 1, delaunay, 0.0); });
+    }
 }
 
 // The best worst sine over every triangulation of the ring polygon, each
@@ -833,12 +862,13 @@ Case kuhn_box(int n, double jitter, uint64_t seed, bool mark_sides) {
     return make_case(in);
 }
 
-int32_t vertex_at(const TetMesh& m, const Vec3& p) {
-    for (int32_t v = 0; v < m.num_vertices(); ++v)
-        if ((m.points[v] - p).norm() < 1e-12) return v;
+int32_t vertex_at(const std::vector<Vec3>& points, const Vec3& p) {
+    for (size_t v = 0; v < points.size(); ++v)
+        if ((points[v] - p).norm() < 1e-12) return static_cast<int32_t>(v);
     fail_msg("no vertex at (%g, %g, %g)", p.x(), p.y(), p.z());
     return -1;
 }
+int32_t vertex_at(const TetMesh& m, const Vec3& p) { return vertex_at(m.points, p); }
 
 // The one interior vertex of a Kuhn box 2^3 (the jittered centre).
 int32_t only_interior(const Case& c) {
@@ -927,7 +957,8 @@ void test_split_edge(void**) {
         assert_int_equal(tm_make_cubes(&tm, 2, 1.0, nullptr, nullptr, 0.2, 3), 0);
         box = from_test_mesh(tm, nullptr);
         tm_free(&tm);
-        const int32_t a = vertex_at(in, Vec3(0, 0, 0)), b = vertex_at(in, Vec3(0, 0, 0.5)), d = vertex_at(in, Vec3(0, 0, 1));
+        const int32_t a = vertex_at(box.points, Vec3(0, 0, 0)), b = vertex_at(box.points, Vec3(0, 0, 0.5)),
+                      d = vertex_at(box.points, Vec3(0, 0, 1));
         box.features = {{a, b}, {b, d}};
         const Case f = make_case(box);
         const Reference fref = reference_of(f);
@@ -941,7 +972,7 @@ void test_split_edge(void**) {
         assert_true(out.feature_edges.count(bodt::edge_key(a, m)) && out.feature_edges.count(bodt::edge_key(m, b)) &&
                     out.feature_edges.count(bodt::edge_key(b, d)));
         // a detected feature edge (another box edge) splits into detected ones
-        const int32_t e = vertex_at(in, Vec3(1, 0, 0)), g = vertex_at(in, Vec3(1, 0.5, 0));
+        const int32_t e = vertex_at(box.points, Vec3(1, 0, 0)), g = vertex_at(box.points, Vec3(1, 0.5, 0));
         assert_true(em.is_feature_edge(e, g));
         const int32_t m2 = bodt::split_edge(em, e, g, Vec3(1, 0.25, 0), loose_rules(), 0.0);
         assert_true(m2 >= 0 && em.is_feature_edge(e, m2) && em.is_feature_edge(m2, g));
@@ -1150,7 +1181,7 @@ void test_collapse(void**) {
     assert_int_equal(done[3], 0);
     assert_true(inverting > 10);
 
-    // A fixed vertex stays.
+    // A fixed vertex stays (the same box, one interior vertex fixed).
     {
         test_mesh tm{};
         assert_int_equal(tm_make_cubes(&tm, 3, 1.0, nullptr, nullptr, 0.25, 6), 0);
@@ -1320,7 +1351,8 @@ void test_rollback(void**) {
         EditableMesh em(c.mesh, c.classes);
         // a few committed changes first: rollback must not reach past commit()
         int pre = 0;
-        while (pre < 5) pre += random_op(em, rng, static_cast<OpKind>(pre % kNumOps), loose_rules());
+        for (int i = 0; i < 200 && pre < 5; ++i) pre += random_op(em, rng, static_cast<OpKind>(i % kNumOps), loose_rules());
+        assert_int_equal(pre, 5);
         em.commit();
         const TetMesh s0 = written(em);
         const int32_t cap0 = em.tet_capacity(), nv0 = em.num_vertices();

@@ -109,6 +109,7 @@ void Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
         params_.keep_surface == 0 && (mode_ == BODT_MODE_BODT || mode_ == BODT_MODE_BODT_BASIC);
     settings.rules.min_stretch = params_.min_stretch;
     settings.rules.never_worse = params_.never_worse != 0;
+    settings.rules.delaunay = params_.delaunay_flips != 0;
     settings.bad_angle_deg = params_.bad_angle;
     settings.flip = bits & BODT_OP_FLIP;
     settings.insert = bits & BODT_OP_INSERT;

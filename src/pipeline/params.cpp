@@ -30,6 +30,7 @@ constexpr Info kParams[] = {
     {BODT_PARAM_OPS, "BODT_PARAM_OPS", Type::Int, -1, BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT | BODT_OP_COLLAPSE},
     {BODT_PARAM_KEEP_SURFACE, "BODT_PARAM_KEEP_SURFACE", Type::Int, 0, 1},
     {BODT_PARAM_BAD_ANGLE, "BODT_PARAM_BAD_ANGLE", Type::Double, 0.0, 60.0},
+    {BODT_PARAM_DELAUNAY_FLIPS, "BODT_PARAM_DELAUNAY_FLIPS", Type::Int, 0, 1},
 };
 
 const Info& lookup(int key, Type want) {
@@ -60,6 +61,7 @@ int32_t& int_field(Params& p, int key) {
         case BODT_PARAM_BACKTRACK_STEPS: return p.backtrack_steps;
         case BODT_PARAM_OPS: return p.ops;
         case BODT_PARAM_KEEP_SURFACE: return p.keep_surface;
+        case BODT_PARAM_DELAUNAY_FLIPS: return p.delaunay_flips;
         default: return p.never_worse;
     }
 }

@@ -16,6 +16,7 @@ struct Params {
     int32_t ops = -1;              // BODT_PARAM_OPS: bodt_op bits, -1 the mode's default
     int32_t keep_surface = 0;      // BODT_PARAM_KEEP_SURFACE
     double bad_angle = 15.0;       // BODT_PARAM_BAD_ANGLE, degrees
+    int32_t delaunay_flips = 0;    // BODT_PARAM_DELAUNAY_FLIPS
 };
 
 // Each throws Error(BODT_ERR_INVALID_ARGUMENT) for an unknown key, a key of

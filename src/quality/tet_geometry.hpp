@@ -95,6 +95,20 @@ inline TetShape tet_shape(const TetPoints& p) {
 // Stretch: 1 for the regular tet, 0 when flat, negative when inverted.
 inline double stretch(const TetPoints& p) { return tet_shape(p).stretch; }
 
+// The centre of the tet's circumsphere (not finite for a flat tet).
+inline Vec3 circumcenter(const TetPoints& p) {
+    const Vec3 u = p[1] - p[0], v = p[2] - p[0], w = p[3] - p[0];
+    const double den = 2.0 * u.dot(v.cross(w));
+    return p[0] + (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / den;
+}
+
+// x lies strictly inside the tet's circumsphere (by more than round-off of
+// the radius): the tet is not Delaunay with respect to x.
+inline bool in_circumsphere(const TetPoints& p, const Vec3& x) {
+    const Vec3 c = circumcenter(p);
+    return (x - c).squaredNorm() < (p[0] - c).squaredNorm() * (1.0 - 1e-10);
+}
+
 // The sine of the tet's worst dihedral angle, small for angles near 0 and
 // near 180 degrees alike: the quality the topology operations maximise.
 // sin(theta_e) = 3 V |e| / (2 A_i A_j) for the faces i, j at edge e, which

@@ -3,6 +3,7 @@
 #include "topology/operations.hpp"
 
 #include <algorithm>
+#include <unordered_map>
 
 namespace bodt {
 
@@ -75,8 +76,9 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
     if (!link_condition(mesh, v, w)) return false;
 
     // The surface faces at v: w must lie in each one's plane, the renamed
-    // face must keep its side, and off the feature edges v's surface
-    // neighbourhood must carry one marker.
+    // face must keep its side, and the faces on each side of a non-feature
+    // edge at v must carry one marker (so markers change only across
+    // feature edges, whose lines stay where they are).
     struct Renamed {
         FaceKey from, to;
         bool marked;
@@ -85,8 +87,12 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
     std::vector<Renamed> renamed;
     std::vector<std::pair<FaceKey, bool>> dropped;  // faces on (v, w)
     if (v_on_surface) {
-        bool have_marker = false;
-        int32_t common_marker = 0;
+        std::unordered_map<int32_t, int32_t> marker_at;  // non-feature edge (v, x) -> marker of its faces
+        const auto one_marker = [&](int32_t x, int32_t marker) {
+            if (mesh.is_feature_edge(v, x)) return true;
+            const auto [it, fresh] = marker_at.emplace(x, marker);
+            return fresh || it->second == marker;
+        };
         for (int32_t t : star) {
             const Tet& q = mesh.tet(t);
             for (int i = 0; i < 4; ++i) {
@@ -94,7 +100,10 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
                 const int32_t a = q[kFaceVertex[i][0]], b = q[kFaceVertex[i][1]], c = q[kFaceVertex[i][2]];
                 const FaceKey f = FaceKey::of(a, b, c);
                 if (!mesh.is_surface_face(f)) continue;
-                if (holds(mesh.tet(t), w) && (a == w || b == w || c == w)) {
+                const int32_t marker = mesh.marker(f);
+                const int32_t x = a == v ? b : a, y = c == v ? b : c;  // v's two neighbours on f
+                if (!one_marker(x, marker) || !one_marker(y, marker)) return false;
+                if (a == w || b == w || c == w) {
                     dropped.push_back({f, mesh.has_marker(f)});
                     continue;
                 }
@@ -103,13 +112,6 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
                 const Vec3 pa = a == v ? mesh.point(w) : mesh.point(a), pb = b == v ? mesh.point(w) : mesh.point(b),
                            pc = c == v ? mesh.point(w) : mesh.point(c);
                 if (!(triangle_normal(pa, pb, pc).dot(n) > 0.0)) return false;
-                const int32_t marker = mesh.marker(f);
-                const bool on_feature = mesh.is_feature_edge(v, a == v ? b : a) || mesh.is_feature_edge(v, c == v ? b : c);
-                if (!on_feature) {
-                    if (have_marker && marker != common_marker) return false;
-                    have_marker = true;
-                    common_marker = marker;
-                }
                 renamed.push_back({f, FaceKey::of(a == v ? w : a, b == v ? w : b, c == v ? w : c), mesh.has_marker(f), marker});
             }
         }

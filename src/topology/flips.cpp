@@ -29,6 +29,28 @@ void replace(EditableMesh& mesh, const std::vector<int32_t>& old_tets, const New
     for (size_t i = 0; i < fresh.size(); ++i) mesh.add_tet(fresh[i], region, origins[i]);
 }
 
+std::vector<TetPoints> shapes(const EditableMesh& mesh, const NewTets& tets) {
+    std::vector<TetPoints> out;
+    for (const Tet& q : tets) out.push_back({mesh.point(q[0]), mesh.point(q[1]), mesh.point(q[2]), mesh.point(q[3])});
+    return out;
+}
+
+// Paper 002 sec. 3.4.4, conditions 1 and 2: the flip replaces a
+// configuration that is not Delaunay by one that is.
+bool delaunay_flip(const EditableMesh& mesh, const std::vector<int32_t>& old_tets, const NewTets& fresh) {
+    std::vector<int32_t> vs;
+    NewTets old;
+    for (int32_t t : old_tets) {
+        old.push_back(mesh.tet(t));
+        vs.insert(vs.end(), mesh.tet(t).begin(), mesh.tet(t).end());
+    }
+    std::sort(vs.begin(), vs.end());
+    vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+    std::vector<Vec3> points;
+    for (int32_t v : vs) points.push_back(mesh.point(v));
+    return !all_delaunay(shapes(mesh, old), points) && all_delaunay(shapes(mesh, fresh), points);
+}
+
 bool one_region(const EditableMesh& mesh, const std::vector<int32_t>& tets) {
     for (int32_t t : tets)
         if (mesh.region(t) != mesh.region(tets.front())) return false;
@@ -119,6 +141,7 @@ bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& 
         if (!in_plane(nrm, pa, mesh.point(r.ring.back()), length)) return false;
     }
     if (!fits_cavity(mesh, r.tets, fresh)) return false;
+    if (rules.delaunay && !delaunay_flip(mesh, r.tets, fresh)) return false;
     const bool marked = !r.closed && mesh.has_marker(f0);
     const int32_t marker = mesh.marker(f0);
     replace(mesh, r.tets, fresh);
@@ -160,6 +183,7 @@ bool flip_23(EditableMesh& mesh, const FaceKey& face, const TopologyRules& rules
         fresh.push_back(q);
     }
     if (!fits_cavity(mesh, old, fresh)) return false;
+    if (rules.delaunay && !delaunay_flip(mesh, old, fresh)) return false;
     replace(mesh, old, fresh);
     return true;
 }

@@ -27,6 +27,13 @@ bool acceptable_tet(const TetPoints& p, const TetLimits& limits) {
     return shape.stretch >= limits.stretch_floor && (!limits.keep_range || within(shape.cosines, limits.range));
 }
 
+bool all_delaunay(const std::vector<TetPoints>& tets, const std::vector<Vec3>& points) {
+    for (const TetPoints& t : tets)
+        for (const Vec3& x : points)
+            if (in_circumsphere(t, x)) return false;
+    return true;
+}
+
 CosineRange cosine_range(const EditableMesh& mesh, const std::vector<int32_t>& tets) {
     CosineRange r{-1.0, 1.0};
     for (int32_t t : tets) {

@@ -24,6 +24,9 @@ TetLimits limits_for(const EditableMesh& mesh, const std::vector<int32_t>& repla
                      double must_exceed);
 bool acceptable_tet(const TetPoints& p, const TetLimits& limits);
 
+// Every tet of `tets` has none of `points` strictly inside its circumsphere.
+bool all_delaunay(const std::vector<TetPoints>& tets, const std::vector<Vec3>& points);
+
 // The extreme dihedral angles (as cosines) over `tets`.
 CosineRange cosine_range(const EditableMesh& mesh, const std::vector<int32_t>& tets);
 // `inner` lies within `outer`: its smallest angle no smaller, its largest no larger.

@@ -20,6 +20,10 @@ struct TopologyRules {
     bool surface_may_change = true;  // false: no boundary/interface face is split, flipped or collapsed
     double min_stretch = 1e-3;       // no new tet below min(this, the worst stretch it replaces)
     bool never_worse = false;        // no new tet with an angle outside the range of the tets it replaces
+    // Flips (edge removal, 2-3) only under paper 002 sec. 3.4.4: some tet
+    // they replace is not Delaunay and every tet they make is (both with
+    // respect to the vertices of the tets involved).
+    bool delaunay = false;
 };
 
 // The largest number of tets around an edge that edge removal considers.

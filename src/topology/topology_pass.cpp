@@ -36,12 +36,6 @@ std::vector<int32_t> region_of(const EditableMesh& mesh, const std::vector<int32
     return out;
 }
 
-Vec3 circumcenter(const TetPoints& p) {
-    const Vec3 u = p[1] - p[0], v = p[2] - p[0], w = p[3] - p[0];
-    const double den = 2.0 * u.dot(v.cross(w));
-    return p[0] + (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / den;
-}
-
 // One guarded ODT move of an interior vertex (paper 000 eq. 3: the
 // volume-weighted mean of the circumcentres of its star), halved until no
 // tet of the star ends worse than the star's worst before.
