@@ -11,13 +11,7 @@ namespace {
 
 bool holds(const Tet& q, int32_t v) { return std::find(q.begin(), q.end(), v) != q.end(); }
 
-bool has_tet(const EditableMesh& mesh, const Tet& q) {
-    for (int32_t t : mesh.tets_of(q[0])) {
-        const Tet& s = mesh.tet(t);
-        if (holds(s, q[1]) && holds(s, q[2]) && holds(s, q[3])) return true;
-    }
-    return false;
-}
+bool has_tet(const EditableMesh& mesh, const Tet& q) { return !mesh.tets_holding({q[0], q[1], q[2], q[3]}).empty(); }
 
 bool has_face(const EditableMesh& mesh, int32_t a, int32_t b, int32_t c) {
     int32_t t[2];

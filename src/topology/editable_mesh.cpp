@@ -90,6 +90,16 @@ TetPoints EditableMesh::tet_points(int32_t t) const {
     return {points_[q[0]], points_[q[1]], points_[q[2]], points_[q[3]]};
 }
 
+std::vector<int32_t> EditableMesh::tets_holding(std::initializer_list<int32_t> vs) const {
+    std::vector<int32_t> out;
+    for (int32_t t : vtets_[*vs.begin()]) {
+        const Tet& q = tets_[t];
+        if (std::all_of(vs.begin(), vs.end(), [&q](int32_t v) { return std::find(q.begin(), q.end(), v) != q.end(); }))
+            out.push_back(t);
+    }
+    return out;
+}
+
 int EditableMesh::face_tets(const FaceKey& f, int32_t out[2]) const {
     int n = 0;
     for (int32_t t : vtets_[f.v[0]]) {

@@ -10,6 +10,7 @@
 #include "mesh/tet_mesh.hpp"
 
 #include <cstdint>
+#include <initializer_list>
 #include <vector>
 
 namespace bodt {
@@ -49,6 +50,8 @@ public:
     const Parents& parents(int32_t v) const { return parents_[v]; }
     TetPoints tet_points(int32_t t) const;
 
+    // The tets holding every vertex of `vs` (an edge, a face, a tet).
+    std::vector<int32_t> tets_holding(std::initializer_list<int32_t> vs) const;
     // Tets holding the face; returns how many (0, 1 or 2).
     int face_tets(const FaceKey& f, int32_t out[2]) const;
     // On the boundary, between regions, or marked by the caller.

@@ -167,10 +167,7 @@ bool flip_23(EditableMesh& mesh, const FaceKey& face, const TopologyRules& rules
     for (int32_t v : q1)
         if (v != face.v[0] && v != face.v[1] && v != face.v[2]) e = v;
     // The new edge (d, e) must not exist yet.
-    for (int32_t s : mesh.tets_of(d)) {
-        const Tet& q = mesh.tet(s);
-        if (std::find(q.begin(), q.end(), e) != q.end()) return false;
-    }
+    if (!mesh.tets_holding({d, e}).empty()) return false;
     const int32_t f[3] = {q0[kFaceVertex[i0][0]], q0[kFaceVertex[i0][1]], q0[kFaceVertex[i0][2]]};
     const std::vector<int32_t> old{t[0], t[1]};
     const TetLimits limits = limits_for(mesh, old, rules, must_exceed);

@@ -34,35 +34,50 @@ bool all_delaunay(const std::vector<TetPoints>& tets, const std::vector<Vec3>& p
     return true;
 }
 
+void widen(CosineRange& range, const TetPoints& p) {
+    const CosineRange c = tet_shape(p).cosines;
+    range.of_min = std::max(range.of_min, c.of_min);
+    range.of_max = std::min(range.of_max, c.of_max);
+}
+
 CosineRange cosine_range(const EditableMesh& mesh, const std::vector<int32_t>& tets) {
     CosineRange r{-1.0, 1.0};
-    for (int32_t t : tets) {
-        const CosineRange c = tet_shape(mesh.tet_points(t)).cosines;
-        r.of_min = std::max(r.of_min, c.of_min);
-        r.of_max = std::min(r.of_max, c.of_max);
-    }
+    for (int32_t t : tets) widen(r, mesh.tet_points(t));
     return r;
+}
+
+std::array<double, 4> barycentric(const TetPoints& p, const Vec3& x) {
+    const double whole = signed_volume(p[0], p[1], p[2], p[3]);
+    std::array<double, 4> lambda;
+    for (int i = 0; i < 4; ++i) {
+        TetPoints s = p;
+        s[i] = x;
+        lambda[i] = signed_volume(s[0], s[1], s[2], s[3]) / whole;
+    }
+    return lambda;
+}
+
+size_t deepest_tet(const std::vector<TetPoints>& tets, const Vec3& x, std::array<double, 4>& lambda) {
+    size_t best = 0;
+    double best_depth = -std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < tets.size(); ++k) {
+        const std::array<double, 4> l = barycentric(tets[k], x);
+        const double depth = *std::min_element(l.begin(), l.end());
+        if (depth > best_depth) {
+            best_depth = depth;
+            best = k;
+            lambda = l;
+        }
+    }
+    return best;
 }
 
 int32_t origin_of(const EditableMesh& mesh, const std::vector<int32_t>& replaced, const Tet& q) {
     const Vec3 c = 0.25 * (mesh.point(q[0]) + mesh.point(q[1]) + mesh.point(q[2]) + mesh.point(q[3]));
-    int32_t best = replaced.front();
-    double best_depth = -std::numeric_limits<double>::infinity();
-    for (int32_t t : replaced) {
-        const TetPoints p = mesh.tet_points(t);
-        const double whole = signed_volume(p[0], p[1], p[2], p[3]);
-        double depth = std::numeric_limits<double>::infinity();  // smallest barycentric coordinate of c
-        for (int i = 0; i < 4; ++i) {
-            TetPoints s = p;
-            s[i] = c;
-            depth = std::min(depth, signed_volume(s[0], s[1], s[2], s[3]) / whole);
-        }
-        if (depth > best_depth) {
-            best_depth = depth;
-            best = t;
-        }
-    }
-    return mesh.origin(best);
+    std::vector<TetPoints> shapes;
+    for (int32_t t : replaced) shapes.push_back(mesh.tet_points(t));
+    std::array<double, 4> lambda;
+    return mesh.origin(replaced[deepest_tet(shapes, c, lambda)]);
 }
 
 Parents blend_parents(const EditableMesh& mesh, std::initializer_list<int32_t> vs, std::initializer_list<double> ws) {

@@ -6,6 +6,7 @@
 #include "topology/editable_mesh.hpp"
 #include "topology/operations.hpp"
 
+#include <array>
 #include <vector>
 
 namespace bodt {
@@ -27,12 +28,19 @@ bool acceptable_tet(const TetPoints& p, const TetLimits& limits);
 // Every tet of `tets` has none of `points` strictly inside its circumsphere.
 bool all_delaunay(const std::vector<TetPoints>& tets, const std::vector<Vec3>& points);
 
-// The extreme dihedral angles (as cosines) over `tets`.
+// The extreme dihedral angles (as cosines) over `tets`; widen adds one tet.
 CosineRange cosine_range(const EditableMesh& mesh, const std::vector<int32_t>& tets);
+void widen(CosineRange& range, const TetPoints& p);
 // `inner` lies within `outer`: its smallest angle no smaller, its largest no larger.
 inline bool within(const CosineRange& inner, const CosineRange& outer) {
     return inner.of_min <= outer.of_min && inner.of_max >= outer.of_max;
 }
+
+// Barycentric coordinates of x in tet p.
+std::array<double, 4> barycentric(const TetPoints& p, const Vec3& x);
+// Of `tets`, the index of the one holding x most deeply (largest smallest
+// barycentric coordinate), with x's coordinates in it.
+size_t deepest_tet(const std::vector<TetPoints>& tets, const Vec3& x, std::array<double, 4>& lambda);
 
 // The input tet a new tet came from: the origin of the replaced tet that
 // holds its centroid most deeply.

@@ -9,17 +9,6 @@ namespace bodt {
 
 namespace {
 
-// Tets holding every vertex of `vs`.
-std::vector<int32_t> tets_holding(const EditableMesh& mesh, std::initializer_list<int32_t> vs) {
-    std::vector<int32_t> out;
-    for (int32_t t : mesh.tets_of(*vs.begin())) {
-        const Tet& q = mesh.tet(t);
-        if (std::all_of(vs.begin(), vs.end(), [&q](int32_t v) { return std::find(q.begin(), q.end(), v) != q.end(); }))
-            out.push_back(t);
-    }
-    return out;
-}
-
 // Each tet of `old_tets` with one vertex of `cut` replaced by the new
 // vertex p, for every vertex of `cut` it holds: the pieces keep the tet's
 // orientation, region and origin.  False (nothing changed) if a piece is
@@ -54,7 +43,7 @@ bool cut_tets(EditableMesh& mesh, const std::vector<int32_t>& old_tets, std::ini
 }  // namespace
 
 int32_t split_edge(EditableMesh& mesh, int32_t a, int32_t b, Vec3 p, const TopologyRules& rules, double must_exceed) {
-    const std::vector<int32_t> old = tets_holding(mesh, {a, b});
+    const std::vector<int32_t> old = mesh.tets_holding({a, b});
     if (old.empty()) return -1;
     const Vec3 &pa = mesh.point(a), &pb = mesh.point(b);
     const double s = std::clamp((p - pa).dot(pb - pa) / (pb - pa).squaredNorm(), 0.0, 1.0);
@@ -96,7 +85,7 @@ int32_t split_edge(EditableMesh& mesh, int32_t a, int32_t b, Vec3 p, const Topol
 
 int32_t split_face(EditableMesh& mesh, const FaceKey& face, Vec3 p, const TopologyRules& rules, double must_exceed) {
     const int32_t a = face.v[0], b = face.v[1], c = face.v[2];
-    const std::vector<int32_t> old = tets_holding(mesh, {a, b, c});
+    const std::vector<int32_t> old = mesh.tets_holding({a, b, c});
     if (old.empty()) return -1;
     const Vec3 &pa = mesh.point(a), &pb = mesh.point(b), &pc = mesh.point(c);
     const Vec3 n = triangle_normal(pa, pb, pc);

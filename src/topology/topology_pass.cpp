@@ -18,15 +18,6 @@ const double kFlipBelowSine = std::sin(30.0 * kDegree);
 constexpr double kGain = 1e-12;
 constexpr int kRelocationRounds = 3;
 
-std::vector<int32_t> tets_around_edge(const EditableMesh& mesh, int32_t a, int32_t b) {
-    std::vector<int32_t> out;
-    for (int32_t t : mesh.tets_of(a)) {
-        const Tet& q = mesh.tet(t);
-        if (std::find(q.begin(), q.end(), b) != q.end()) out.push_back(t);
-    }
-    return out;
-}
-
 // The tets touching any of `vs`, each once.
 std::vector<int32_t> region_of(const EditableMesh& mesh, const std::vector<int32_t>& vs) {
     std::vector<int32_t> out;
@@ -69,7 +60,7 @@ void relocate(EditableMesh& mesh, int32_t v, const TopologyRules& rules) {
 bool flip_around(EditableMesh& mesh, int32_t t, const TopologyRules& rules) {
     const Tet q = mesh.tet(t);
     for (const auto& e : kEdgeVertex) {
-        const std::vector<int32_t> ring = tets_around_edge(mesh, q[e[0]], q[e[1]]);
+        const std::vector<int32_t> ring = mesh.tets_holding({q[e[0]], q[e[1]]});
         if (static_cast<int>(ring.size()) > kMaxEdgeRing) continue;
         if (remove_edge(mesh, q[e[0]], q[e[1]], rules, worst_sine(mesh, ring) + kGain)) return true;
     }
@@ -174,11 +165,6 @@ bool try_change(EditableMesh& mesh, int32_t t, const TopologyRules& rules, bool 
     // A tet changed if it is gone, new, or has moved.
     double before = 1.0, after = 1.0;
     CosineRange range_before{-1.0, 1.0}, range_after{-1.0, 1.0};
-    const auto widen = [](CosineRange& r, const TetPoints& p) {
-        const CosineRange c = tet_shape(p).cosines;
-        r.of_min = std::max(r.of_min, c.of_min);
-        r.of_max = std::min(r.of_max, c.of_max);
-    };
     for (size_t k = 0; k < region.size(); ++k) {
         const int32_t s = region[k];
         if (mesh.alive(s) && mesh.tet_points(s) == shapes_before[k]) continue;
@@ -200,25 +186,8 @@ bool try_change(EditableMesh& mesh, int32_t t, const TopologyRules& rules, bool 
     // A new vertex interpolates the mesh as it was, where the vertex ended.
     for (int32_t v : fresh) {
         if (mesh.tets_of(v).empty()) continue;
-        const Vec3 p = mesh.point(v);
-        size_t best = 0;
-        double best_depth = -1e300;
-        std::array<double, 4> lambda{}, best_lambda{};
-        for (size_t k = 0; k < shapes_before.size(); ++k) {
-            const TetPoints& s = shapes_before[k];
-            const double whole = signed_volume(s[0], s[1], s[2], s[3]);
-            for (int i = 0; i < 4; ++i) {
-                TetPoints x = s;
-                x[i] = p;
-                lambda[i] = signed_volume(x[0], x[1], x[2], x[3]) / whole;
-            }
-            const double depth = *std::min_element(lambda.begin(), lambda.end());
-            if (depth > best_depth) {
-                best_depth = depth;
-                best = k;
-                best_lambda = lambda;
-            }
-        }
+        std::array<double, 4> best_lambda;
+        const size_t best = deepest_tet(shapes_before, mesh.point(v), best_lambda);
         double sum = 0.0;
         for (double& l : best_lambda) sum += (l = std::max(l, 0.0));
         for (double& l : best_lambda) l /= sum;
