@@ -14,8 +14,9 @@
 // reported and the bench goes on.
 //
 // Only the public API (bodt.h) is used.  Modes are taken by value (1 laplace,
-// 2 odt, 3 bodt-basic, 4 bodt); a mode or an operation set the library
-// refuses is "unsupported".
+// 2 odt, 3 bodt-basic, 4 bodt, 5 opt-weighted); a mode or an operation set the
+// library refuses is "unsupported".  --param NAME=VALUE sets any other
+// parameter (BODT_PARAM_*) for every variant.
 
 #include "bodt.h"
 
@@ -30,6 +31,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cinttypes>
@@ -57,25 +59,32 @@ using bench::PreparedMesh;
 
 // A variant: a mode (by value) and the operations of a step (BODT_PARAM_OPS;
 // kOpsDefault leaves the library's default for the mode, which is
-// SMOOTH | FLIP | INSERT for BODT_MODE_BODT and SMOOTH otherwise).
+// SMOOTH | FLIP | INSERT for BODT_MODE_BODT, SMOOTH | FLIP for
+// BODT_MODE_OPT_WEIGHTED and SMOOTH otherwise).
 constexpr int kOpsDefault = -1;
 struct Variant {
     std::string name;
     int mode;
     int ops;
 };
-const Variant kVariants[] = {{"laplace", 1, kOpsDefault},
-                             {"odt", 2, kOpsDefault},
-                             {"bodt-basic", 3, kOpsDefault},
-                             {"bodt-smooth", 4, BODT_OP_SMOOTH},
-                             {"bodt", 4, kOpsDefault}};
+const Variant kVariants[] = {{"laplace", BODT_MODE_LAPLACE, kOpsDefault},
+                             {"odt", BODT_MODE_ODT, kOpsDefault},
+                             {"bodt-basic", BODT_MODE_BODT_BASIC, kOpsDefault},
+                             {"bodt-smooth", BODT_MODE_BODT, BODT_OP_SMOOTH},
+                             {"bodt", BODT_MODE_BODT, kOpsDefault},
+                             // paper 001: "improved smoothing" alone, and the
+                             // "combined" method (smoothing + Algorithm 4 swaps)
+                             {"opt-smooth", BODT_MODE_OPT_WEIGHTED, BODT_OP_SMOOTH},
+                             {"opt", BODT_MODE_OPT_WEIGHTED, kOpsDefault}};
 
+// The mode's name as the bodt command spells it (bodt improve --mode).
 const char* mode_name(int mode) {
     switch (mode) {
-        case 1: return "laplace";
-        case 2: return "odt";
-        case 3: return "bodt-basic";
-        case 4: return "bodt";
+        case BODT_MODE_LAPLACE: return "laplace";
+        case BODT_MODE_ODT: return "odt";
+        case BODT_MODE_BODT_BASIC: return "bodt-basic";
+        case BODT_MODE_BODT: return "bodt";
+        case BODT_MODE_OPT_WEIGHTED: return "opt-weighted";
         default: return "unknown";
     }
 }
@@ -83,7 +92,73 @@ const char* mode_name(int mode) {
 // The operations a step does, as the library documents its default.
 int effective_ops(int mode, int ops) {
     if (ops != kOpsDefault) return ops;
-    return mode == 4 ? (BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT) : BODT_OP_SMOOTH;
+    switch (mode) {
+        case BODT_MODE_BODT: return BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT;
+        case BODT_MODE_OPT_WEIGHTED: return BODT_OP_SMOOTH | BODT_OP_FLIP;
+        default: return BODT_OP_SMOOTH;
+    }
+}
+
+// The library's parameters for --param NAME=VALUE: NAME is the lower-case
+// suffix of BODT_PARAM_*, the type that of the key (bodt.h).  BODT_PARAM_OPS
+// is not here: it belongs to the variants (--ops).
+struct ParamInfo {
+    const char* name;
+    int key;
+    bool is_int;
+};
+const ParamInfo kParams[] = {
+    {"tolerance", BODT_PARAM_TOLERANCE, false},
+    {"backtrack_steps", BODT_PARAM_BACKTRACK_STEPS, true},
+    {"min_stretch", BODT_PARAM_MIN_STRETCH, false},
+    {"never_worse", BODT_PARAM_NEVER_WORSE, true},
+    {"feature_angle", BODT_PARAM_FEATURE_ANGLE, false},
+    {"edge_ratio", BODT_PARAM_EDGE_RATIO, false},
+    {"corner_ratio", BODT_PARAM_CORNER_RATIO, false},
+    {"keep_surface", BODT_PARAM_KEEP_SURFACE, true},
+    {"bad_angle", BODT_PARAM_BAD_ANGLE, false},
+    {"delaunay_flips", BODT_PARAM_DELAUNAY_FLIPS, true},
+    {"weight_c", BODT_PARAM_WEIGHT_C, false},
+    {"poor_quality", BODT_PARAM_POOR_QUALITY, false},
+    {"qn_epsilon", BODT_PARAM_QN_EPSILON, false},
+    {"qn_max_iterations", BODT_PARAM_QN_MAX_ITERATIONS, true},
+    {"qn_initial_step", BODT_PARAM_QN_INITIAL_STEP, false},
+    {"qn_interval_growth", BODT_PARAM_QN_INTERVAL_GROWTH, false},
+};
+constexpr size_t kNumParams = sizeof kParams / sizeof kParams[0];
+
+size_t param_index(int key) {
+    for (size_t i = 0; i < kNumParams; ++i)
+        if (kParams[i].key == key) return i;
+    return kNumParams;
+}
+
+// "BODT_PARAM_WEIGHT_C" for "weight_c".
+std::string param_macro(const ParamInfo& p) {
+    std::string o = "BODT_PARAM_";
+    for (const char* c = p.name; *c; ++c) o += char(std::toupper(static_cast<unsigned char>(*c)));
+    return o;
+}
+
+// A value as text: an int parameter's value (kept as a double, exact for
+// int32) as an integer, a double's as the shortest text that reads back the
+// same.  Not finite: "null" (for JSON).
+std::string param_value_string(const ParamInfo& p, double v) {
+    if (!std::isfinite(v)) return "null";
+    char b[40];
+    if (p.is_int) {
+        std::snprintf(b, sizeof b, "%d", int(v));
+        return b;
+    }
+    if (v == std::floor(v) && std::fabs(v) < 1e15) {  // 20, not 2e+01
+        std::snprintf(b, sizeof b, "%.0f", v);
+        return b;
+    }
+    for (int prec = 1; prec <= 17; ++prec) {
+        std::snprintf(b, sizeof b, "%.*g", prec, v);
+        if (std::strtod(b, nullptr) == v) break;
+    }
+    return b;
 }
 
 // "smooth+flip+insert", "none" for 0, "default" for kOpsDefault.
@@ -108,14 +183,18 @@ std::string ops_string(int ops) {
 
 // ---------------------------------------------------------------- options
 
+// One --param (or --never-worse, --keep-surface, --bad-angle).
+struct ParamSetting {
+    size_t index;  // into kParams
+    double value;  // an int parameter's value as a double
+};
+
 struct Options {
     std::vector<Variant> variants;
     int iterations = 20;
-    int never_worse = -1;     // -1: library default
     bool ops_override = false;  // --ops given: every variant gets ops
     int ops = kOpsDefault;
-    int keep_surface = -1;    // -1: library default
-    double bad_angle = -1.0;  // < 0: library default
+    std::vector<ParamSetting> params;  // set for every variant, in this order; one per key
     std::string json_path, markdown_path, write_dir;
     std::string shared_dir = BODT_BENCH_DEFAULT_SHARED;
     bool large = false;
@@ -127,19 +206,32 @@ struct Options {
 };
 
 void usage(FILE* f) {
+    std::string param_names;
+    for (size_t i = 0; i < kNumParams; ++i) {
+        if (i % 4 == 0) param_names += i ? ",\n                       " : "\n                       ";
+        else param_names += ", ";
+        param_names += kParams[i].name;
+        param_names += kParams[i].is_int ? " (int)" : "";
+    }
     std::fprintf(f,
                  "usage: bodt_bench [options]\n"
                  "  --modes LIST         comma-separated variants: laplace, odt, bodt-basic,\n"
                  "                       bodt-smooth (mode bodt, ops smooth: the 0.2 behaviour),\n"
                  "                       bodt (mode bodt, its default ops smooth+flip+insert),\n"
-                 "                       or mode values (1..4, with the mode's default ops)\n"
-                 "                       (default: laplace,odt,bodt-basic,bodt-smooth,bodt)\n"
+                 "                       opt-smooth (mode opt-weighted, ops smooth: paper 001's\n"
+                 "                       improved smoothing), opt (mode opt-weighted, its default\n"
+                 "                       ops smooth+flip: paper 001's combined method),\n"
+                 "                       or mode values (1..5, with the mode's default ops)\n"
+                 "                       (default: laplace,odt,bodt-basic,bodt-smooth,bodt,opt-smooth,opt)\n"
                  "  --ops LIST           BODT_PARAM_OPS for every variant: 'default', an integer, or\n"
                  "                       '+' or ',' separated of smooth,flip,insert,collapse\n"
+                 "  --param NAME=VALUE   set BODT_PARAM_<NAME> for every variant (repeatable), NAME in\n"
+                 "                       lower case, one of:%s\n"
+                 "                       (ops=LIST is --ops LIST)\n"
                  "  --iterations N       bodt_step calls per run (default 20)\n"
-                 "  --never-worse 0|1    set BODT_PARAM_NEVER_WORSE (default: the library's default)\n"
-                 "  --keep-surface 0|1   set BODT_PARAM_KEEP_SURFACE (default: the library's default)\n"
-                 "  --bad-angle DEG      set BODT_PARAM_BAD_ANGLE (default: the library's default)\n"
+                 "  --never-worse 0|1    = --param never_worse=0|1 (default: the library's default)\n"
+                 "  --keep-surface 0|1   = --param keep_surface=0|1\n"
+                 "  --bad-angle DEG      = --param bad_angle=DEG\n"
                  "  --json FILE          JSON lines to FILE instead of stdout\n"
                  "  --markdown FILE      write the markdown summary to FILE\n"
                  "  --write-dir DIR      write CASE.input.mesh and CASE.VARIANT.mesh there (bodt_mesh_write)\n"
@@ -154,7 +246,7 @@ void usage(FILE* f) {
                  "  --list               list the cases and exit\n"
                  "  --help\n"
                  "exit status: 0 (also when some runs fail; see their status), 2 usage error\n",
-                 BODT_BENCH_DEFAULT_SHARED[0] ? BODT_BENCH_DEFAULT_SHARED : "none");
+                 param_names.c_str(), BODT_BENCH_DEFAULT_SHARED[0] ? BODT_BENCH_DEFAULT_SHARED : "none");
 }
 
 [[noreturn]] void usage_error(const char* fmt, ...) {
@@ -176,6 +268,42 @@ bool parse_int(const char* s, int& out) {
     out = int(v);
     return true;
 }
+
+bool parse_double(const char* s, double& out) {
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(s, &end);
+    if (errno || end == s || *end || !std::isfinite(v)) return false;
+    out = v;
+    return true;
+}
+
+// Set (or replace) a parameter for every variant.  The value's type is the
+// key's; its range is checked by the library (check_params).
+void set_param(Options& o, const std::string& name, const std::string& text, const char* option) {
+    size_t idx = kNumParams;
+    for (size_t i = 0; i < kNumParams; ++i)
+        if (name == kParams[i].name) idx = i;
+    if (idx == kNumParams) usage_error("%s: unknown parameter '%s' (see --param below)", option, name.c_str());
+    double v = 0;
+    if (kParams[idx].is_int) {
+        int iv = 0;
+        if (!parse_int(text.c_str(), iv))
+            usage_error("%s: %s is an int parameter, got '%s'", option, name.c_str(), text.c_str());
+        v = iv;
+    } else if (!parse_double(text.c_str(), v)) {
+        usage_error("%s: %s needs a finite number, got '%s'", option, name.c_str(), text.c_str());
+    }
+    for (ParamSetting& ps : o.params)
+        if (ps.index == idx) {
+            ps.value = v;
+            return;
+        }
+    o.params.push_back({idx, v});
+}
+
+// --ops LIST (also --param ops=LIST).
+void parse_ops(Options& o, const std::string& list);
 
 // Split at any of the characters in seps; empty items are dropped.
 std::vector<std::string> split_list(const std::string& list, const char* seps) {
@@ -215,43 +343,40 @@ Options parse_args(int argc, char** argv) {
                     o.variants.push_back({"mode" + name, mval, kOpsDefault});
                     found = true;
                 }
-                if (!found)
-                    usage_error("unknown variant '%s' (laplace, odt, bodt-basic, bodt-smooth, bodt or a mode value)",
-                                name.c_str());
+                if (!found) {
+                    std::string known;
+                    for (const Variant& v : kVariants) known += v.name + ", ";
+                    usage_error("unknown variant '%s' (%sor a mode value)", name.c_str(), known.c_str());
+                }
             }
             if (o.variants.empty()) usage_error("--modes needs at least one variant");
         } else if (a == "--ops") {
-            const std::string list = value(i);
-            o.ops_override = true;
-            if (list == "default") {
-                o.ops = kOpsDefault;
-            } else if (parse_int(list.c_str(), o.ops)) {
-                if (o.ops < 0) usage_error("--ops takes a value >= 0 or 'default'");
-            } else {
-                o.ops = 0;
-                for (const std::string& name : split_list(list, ",+")) {
-                    if (name == "smooth") o.ops |= BODT_OP_SMOOTH;
-                    else if (name == "flip") o.ops |= BODT_OP_FLIP;
-                    else if (name == "insert") o.ops |= BODT_OP_INSERT;
-                    else if (name == "collapse") o.ops |= BODT_OP_COLLAPSE;
-                    else usage_error("unknown operation '%s' (smooth, flip, insert, collapse)", name.c_str());
-                }
-            }
+            parse_ops(o, value(i));
+        } else if (a == "--param") {
+            const std::string kv = value(i);
+            const size_t eq = kv.find('=');
+            if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
+                usage_error("--param takes NAME=VALUE, got '%s'", kv.c_str());
+            const std::string name = kv.substr(0, eq), val = kv.substr(eq + 1);
+            if (name == "ops")
+                parse_ops(o, val);
+            else
+                set_param(o, name, val, "--param");
         } else if (a == "--keep-surface") {
             const std::string v = value(i);
             if (v != "0" && v != "1") usage_error("--keep-surface takes 0 or 1");
-            o.keep_surface = v == "1";
+            set_param(o, "keep_surface", v, "--keep-surface");
         } else if (a == "--bad-angle") {
-            const char* v = value(i);
-            char* end = nullptr;
-            o.bad_angle = std::strtod(v, &end);
-            if (end == v || *end || !(o.bad_angle >= 0)) usage_error("--bad-angle needs degrees >= 0");
+            const std::string v = value(i);
+            double d = 0;
+            if (!parse_double(v.c_str(), d) || !(d >= 0)) usage_error("--bad-angle needs degrees >= 0");
+            set_param(o, "bad_angle", v, "--bad-angle");
         } else if (a == "--iterations") {
             if (!parse_int(value(i), o.iterations) || o.iterations < 1) usage_error("--iterations needs N >= 1");
         } else if (a == "--never-worse") {
             const std::string v = value(i);
             if (v != "0" && v != "1") usage_error("--never-worse takes 0 or 1");
-            o.never_worse = v == "1";
+            set_param(o, "never_worse", v, "--never-worse");
         } else if (a == "--json") {
             o.json_path = value(i);
         } else if (a == "--markdown") {
@@ -291,6 +416,53 @@ Options parse_args(int argc, char** argv) {
     return o;
 }
 
+void parse_ops(Options& o, const std::string& list) {
+    o.ops_override = true;
+    if (list == "default") {
+        o.ops = kOpsDefault;
+    } else if (parse_int(list.c_str(), o.ops)) {
+        if (o.ops < 0) usage_error("--ops takes a value >= 0 or 'default'");
+    } else {
+        o.ops = 0;
+        for (const std::string& name : split_list(list, ",+")) {
+            if (name == "smooth") o.ops |= BODT_OP_SMOOTH;
+            else if (name == "flip") o.ops |= BODT_OP_FLIP;
+            else if (name == "insert") o.ops |= BODT_OP_INSERT;
+            else if (name == "collapse") o.ops |= BODT_OP_COLLAPSE;
+            else usage_error("unknown operation '%s' (smooth, flip, insert, collapse)", name.c_str());
+        }
+    }
+}
+
+// The value a --param gave for key, or nullptr.
+const ParamSetting* find_param(const Options& o, int key) {
+    for (const ParamSetting& ps : o.params)
+        if (kParams[ps.index].key == key) return &ps;
+    return nullptr;
+}
+
+// Refuse, before any case is made, a parameter value the library refuses
+// (range, or a key this library does not know): set each on a one-tet mesh.
+void check_params(const Options& o) {
+    if (o.params.empty()) return;
+    const double xyz[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const int32_t tet[4] = {0, 1, 2, 3};
+    bodt_mesh* m = nullptr;
+    if (bodt_mesh_create(4, xyz, 1, tet, 0, &m) != BODT_OK) return;  // cannot check: the runs will say
+    for (const ParamSetting& ps : o.params) {
+        const ParamInfo& p = kParams[ps.index];
+        const int st = p.is_int ? bodt_set_param_int(m, p.key, int32_t(ps.value))
+                                : bodt_set_param_double(m, p.key, ps.value);
+        if (st != BODT_OK) {
+            const std::string msg = bodt_mesh_last_error(m);
+            bodt_mesh_destroy(m);
+            usage_error("%s=%s: refused by libbodt: %s", p.name, param_value_string(p, ps.value).c_str(),
+                        msg.c_str());
+        }
+    }
+    bodt_mesh_destroy(m);
+}
+
 // ----------------------------------------------------------------- results
 
 struct Stats {
@@ -312,6 +484,7 @@ struct RunResult {
     int32_t ops_effective;  // the operations a step does (the default resolved), -1 unknown
     int32_t keep_surface;   // effective value, -1 unknown
     double bad_angle;       // effective value, NaN unknown
+    double params[kNumParams];  // every parameter of kParams as read back, NaN unknown
     int32_t has_before, has_after;
     Stats before, after;
     double volume_change_rel;
@@ -338,6 +511,7 @@ RunResult empty_result() {
     r.never_worse = r.keep_surface = r.ops_effective = -1;
     r.ops = kOpsDefault;
     r.bad_angle = NAN;
+    for (double& v : r.params) v = NAN;
     r.volume_change_rel = r.region_volume_change_rel_max = r.hausdorff_abs = r.hausdorff_rel = NAN;
     return r;
 }
@@ -474,27 +648,34 @@ RunResult run_one(const Case& c, const PreparedMesh& pm, const Variant& var, con
             return unsupported("bodt_set_param_int(OPS)");
         if (st != BODT_OK) return fail("error", "bodt_set_param_int(OPS)", errmsg(mh.m, st));
     }
-    if (opt.never_worse >= 0) {
-        st = bodt_set_param_int(mh.m, BODT_PARAM_NEVER_WORSE, opt.never_worse);
-        if (st != BODT_OK) return fail("error", "bodt_set_param_int(NEVER_WORSE)", errmsg(mh.m, st));
+    // --param (and --never-worse, --keep-surface, --bad-angle), after the mode
+    for (const ParamSetting& ps : opt.params) {
+        const ParamInfo& p = kParams[ps.index];
+        const std::string call = std::string(p.is_int ? "bodt_set_param_int(" : "bodt_set_param_double(") +
+                                 param_macro(p).substr(11) + ")";
+        st = p.is_int ? bodt_set_param_int(mh.m, p.key, int32_t(ps.value)) : bodt_set_param_double(mh.m, p.key, ps.value);
+        if (st != BODT_OK) return fail("error", call, errmsg(mh.m, st));
     }
-    if (opt.keep_surface >= 0) {
-        st = bodt_set_param_int(mh.m, BODT_PARAM_KEEP_SURFACE, opt.keep_surface);
-        if (st != BODT_OK) return fail("error", "bodt_set_param_int(KEEP_SURFACE)", errmsg(mh.m, st));
+    // every parameter as the run uses it
+    for (size_t i = 0; i < kNumParams; ++i) {
+        int32_t iv = 0;
+        double dv = NAN;
+        if (kParams[i].is_int) {
+            if (bodt_get_param_int(mh.m, kParams[i].key, &iv) == BODT_OK) r.params[i] = iv;
+        } else if (bodt_get_param_double(mh.m, kParams[i].key, &dv) == BODT_OK) {
+            r.params[i] = dv;
+        }
     }
-    if (opt.bad_angle >= 0) {
-        st = bodt_set_param_double(mh.m, BODT_PARAM_BAD_ANGLE, opt.bad_angle);
-        if (st != BODT_OK) return fail("error", "bodt_set_param_double(BAD_ANGLE)", errmsg(mh.m, st));
-    }
+    auto read_back = [&](int key) { return r.params[param_index(key)]; };
+    if (std::isfinite(read_back(BODT_PARAM_NEVER_WORSE))) r.never_worse = int32_t(read_back(BODT_PARAM_NEVER_WORSE));
+    if (std::isfinite(read_back(BODT_PARAM_KEEP_SURFACE)))
+        r.keep_surface = int32_t(read_back(BODT_PARAM_KEEP_SURFACE));
+    r.bad_angle = read_back(BODT_PARAM_BAD_ANGLE);
     int32_t iv = -1;
-    if (bodt_get_param_int(mh.m, BODT_PARAM_NEVER_WORSE, &iv) == BODT_OK) r.never_worse = iv;
     if (bodt_get_param_int(mh.m, BODT_PARAM_OPS, &iv) == BODT_OK) {
         r.ops = iv;
         r.ops_effective = effective_ops(var.mode, iv);
     }
-    if (bodt_get_param_int(mh.m, BODT_PARAM_KEEP_SURFACE, &iv) == BODT_OK) r.keep_surface = iv;
-    double dv = NAN;
-    if (bodt_get_param_double(mh.m, BODT_PARAM_BAD_ANGLE, &dv) == BODT_OK) r.bad_angle = dv;
 
     // The steps, and only they, are timed.
     bool step_failed = false;
@@ -727,6 +908,21 @@ std::string result_json(const Case& c, const std::string& note, const Variant& v
     o += ",\"never_worse\":" + (r.never_worse >= 0 ? std::to_string(r.never_worse) : std::string("null"));
     o += ",\"keep_surface\":" + (r.keep_surface >= 0 ? std::to_string(r.keep_surface) : std::string("null"));
     o += ",\"bad_angle\":" + json_num(r.bad_angle);
+    // what --param asked for, and every parameter as the run used it
+    o += ",\"params\":{";
+    for (size_t i = 0; i < opt.params.size(); ++i) {
+        const ParamInfo& p = kParams[opt.params[i].index];
+        o += (i ? "," : "") + json_str(p.name) + ":" + param_value_string(p, opt.params[i].value);
+    }
+    o += "}";
+    bool any_effective = false;
+    for (double v : r.params) any_effective = any_effective || std::isfinite(v);
+    if (any_effective) {
+        o += ",\"params_effective\":{";
+        for (size_t i = 0; i < kNumParams; ++i)
+            o += (i ? "," : "") + json_str(kParams[i].name) + ":" + param_value_string(kParams[i], r.params[i]);
+        o += "}";
+    }
     if (r.has_before) {
         o += ",\"vertices\":" + std::to_string(r.before.vertices);
         o += ",\"tets\":" + std::to_string(r.before.tets);
@@ -816,10 +1012,13 @@ std::string markdown(const std::vector<Row>& rows, const Options& opt, const std
     const std::time_t now = std::time(nullptr);
     std::strftime(date, sizeof date, "%Y-%m-%d %H:%M", std::localtime(&now));
     md += "# bodt_bench\n\n";
+    const ParamSetting* nw = find_param(opt, BODT_PARAM_NEVER_WORSE);
     md += fmt("libbodt %s, %d bodt_step calls per case and variant, BODT_PARAM_NEVER_WORSE %s", bodt_version_string(),
-              opt.iterations, opt.never_worse < 0 ? "= library default" : (opt.never_worse ? "= 1" : "= 0"));
-    if (opt.keep_surface >= 0) md += fmt(", BODT_PARAM_KEEP_SURFACE = %d", opt.keep_surface);
-    if (opt.bad_angle >= 0) md += fmt(", BODT_PARAM_BAD_ANGLE = %g", opt.bad_angle);
+              opt.iterations, !nw ? "= library default" : (nw->value != 0 ? "= 1" : "= 0"));
+    for (const ParamSetting& ps : opt.params)  // --param, --keep-surface, --bad-angle, in the order given
+        if (kParams[ps.index].key != BODT_PARAM_NEVER_WORSE)
+            md += fmt(", %s = %s", param_macro(kParams[ps.index]).c_str(),
+                      param_value_string(kParams[ps.index], ps.value).c_str());
     md += fmt("; %s; total %.0f s.\n\n", date, total_s);
 
     // The operations each variant did (as read back from the library).
@@ -1082,6 +1281,7 @@ int rm_entry(const char* path, const struct stat*, int, struct FTW*) { return re
 
 int main(int argc, char** argv) {
     const Options opt = parse_args(argc, argv);
+    check_params(opt);
 
     FILE* json = stdout;
     if (!opt.json_path.empty()) {

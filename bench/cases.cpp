@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <utility>
 
 #ifdef BODT_BENCH_WITH_ZLIB
 #include <zlib.h>
@@ -174,6 +175,185 @@ bool make_jittered_box(int n, double amplitude, uint64_t seed, MeshArrays& m, st
                   "Kuhn box %d^3 cubes x 6 tets, interior vertices jittered by up to %.2f h (seed %llu); "
                   "%d offset halvings in %d rounds to keep every tet valid",
                   n, amplitude, static_cast<unsigned long long>(seed), halved, rounds);
+    note = buf;
+    return true;
+}
+
+// ------------------------------------------------------ lazy triangulation
+
+// Sign of the orientation determinant 6V, certified as the library certifies
+// it (src/quality/tet_geometry.hpp: Shewchuk's static bound for orient3d,
+// computed from the first vertex): +1 or -1 when the sign is known, 0 when
+// round-off could flip it.  The same formula, operand order and bound, so a
+// tet this calls positive is positive for bodt_mesh_create too.
+struct Orient {
+    double det6;
+    int sign;
+};
+
+Orient orient_certified(const double* a, const double* b, const double* c, const double* d) {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    const double m1 = v[1] * w[2], m2 = v[2] * w[1];
+    const double m3 = v[2] * w[0], m4 = v[0] * w[2];
+    const double m5 = v[0] * w[1], m6 = v[1] * w[0];
+    const double det = u[0] * (m1 - m2) + u[1] * (m3 - m4) + u[2] * (m5 - m6);
+    const double permanent = std::fabs(u[0]) * (std::fabs(m1) + std::fabs(m2)) +
+                             std::fabs(u[1]) * (std::fabs(m3) + std::fabs(m4)) +
+                             std::fabs(u[2]) * (std::fabs(m5) + std::fabs(m6));
+    constexpr double eps = 1.1102230246251565e-16;  // 2^-53
+    constexpr double bound = (7.0 + 56.0 * eps) * eps;
+    return {det, det > bound * permanent ? 1 : (det < -bound * permanent ? -1 : 0)};
+}
+
+// A lazy triangulation like paper 001's RAND1/RAND2: the unit cube cut into
+// the 6 Kuhn tets around its main diagonal, then npoints uniformly random
+// points inserted one by one, each by locating the tet that holds it (a
+// stochastic visibility walk from a tet made by an earlier point of the same
+// grid cell, brute force if the walk takes too long) and splitting that tet
+// 1->4.  A point whose smallest
+// barycentric coordinate in its tet is below min_bary (it lies within that
+// fraction of the tet's height from a face), or one of whose four new tets
+// does not have a certified positive orientation, is redrawn.  The result
+// depends on the points only (a point strictly inside a tet has one home), so
+// it is the same whatever path the walk takes.  Every point is inside: the
+// boundary stays the 12 triangles of the cube, with 8 vertices.
+bool make_lazy_cube(int npoints, uint64_t seed, double min_bary, MeshArrays& m, std::string& note) {
+    m.xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1};  // vertex = x + 2y + 4z
+    m.xyz.reserve(3 * (8 + size_t(npoints)));
+    std::vector<std::array<int32_t, 4>> tets;
+    std::vector<std::array<int32_t, 4>> nbr;  // nbr[t][i]: the tet across the face opposite vertex i, -1 outside
+    tets.reserve(6 + 3 * size_t(npoints));
+    nbr.reserve(tets.capacity());
+    static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    for (const auto& p : perms) {
+        int c[3] = {0, 0, 0};
+        std::array<int32_t, 4> t{};
+        for (int s = 0; s < 3; ++s) {
+            ++c[p[s]];
+            t[size_t(s) + 1] = c[0] + 2 * c[1] + 4 * c[2];
+        }
+        const double* x = m.xyz.data();
+        if (orient_certified(x + 3 * t[0], x + 3 * t[1], x + 3 * t[2], x + 3 * t[3]).sign < 0) std::swap(t[2], t[3]);
+        tets.push_back(t);
+    }
+    // adjacency of the 6 Kuhn tets: match their faces
+    for (size_t t = 0; t < tets.size(); ++t) {
+        std::array<int32_t, 4> n{-1, -1, -1, -1};
+        for (int i = 0; i < 4; ++i) {
+            std::array<int32_t, 3> f{}, g{};
+            for (int k = 0, j = 0; k < 4; ++k)
+                if (k != i) f[size_t(j++)] = tets[t][size_t(k)];
+            std::sort(f.begin(), f.end());
+            for (size_t u = 0; u < tets.size() && n[size_t(i)] < 0; ++u) {
+                if (u == t) continue;
+                for (int l = 0; l < 4; ++l) {
+                    for (int k = 0, j = 0; k < 4; ++k)
+                        if (k != l) g[size_t(j++)] = tets[u][size_t(k)];
+                    std::sort(g.begin(), g.end());
+                    if (f == g) n[size_t(i)] = int32_t(u);
+                }
+            }
+        }
+        nbr.push_back(n);
+    }
+
+    Rng rng(seed);
+    Rng walk_rng(seed ^ 0x77a1c0ffeeULL);  // face order of the walk; does not change the result
+    const double* x = nullptr;
+    auto face_det = [&](size_t t, int i, const double* p) {  // 6V of tet t with vertex i replaced by p
+        const double* q[4];
+        for (int k = 0; k < 4; ++k) q[k] = k == i ? p : x + 3 * tets[t][size_t(k)];
+        return orient_certified(q[0], q[1], q[2], q[3]);
+    };
+    long redrawn = 0, brute = 0;
+    // walk starts: per cell of a grid of about 2 points per cell, the last tet
+    // made around a point in that cell (tet ids are never removed)
+    const int grid = std::max(1, int(std::cbrt(npoints / 2.0)));
+    std::vector<int32_t> hint(size_t(grid) * grid * grid, -1);
+    auto cell_of = [grid](const double* p) {
+        size_t c = 0;
+        for (int k = 2; k >= 0; --k) c = c * size_t(grid) + size_t(std::min(grid - 1, std::max(0, int(p[k] * grid))));
+        return c;
+    };
+    for (int n = 0; n < npoints; ++n) {
+        for (;;) {
+            const double p[3] = {rng.uniform(), rng.uniform(), rng.uniform()};
+            x = m.xyz.data();
+            // locate: a stochastic visibility walk
+            const size_t cell = cell_of(p);
+            size_t t = hint[cell] >= 0 ? size_t(hint[cell]) : tets.size() - 1;
+            bool found = false;
+            const long max_steps = 100 * long(std::cbrt(double(tets.size()))) + 1000;
+            for (long step = 0; step < max_steps && !found; ++step) {
+                const int start = int(walk_rng.next() & 3);
+                found = true;
+                for (int k = 0; k < 4; ++k) {
+                    const int i = (start + k) & 3;
+                    if (face_det(t, i, p).det6 < 0 && nbr[t][size_t(i)] >= 0) {
+                        t = size_t(nbr[t][size_t(i)]);
+                        found = false;
+                        break;
+                    }
+                }
+            }
+            if (!found) {  // the walk went round in circles: look at every tet
+                ++brute;
+                double best = -INFINITY;
+                for (size_t u = 0; u < tets.size(); ++u) {
+                    double worst = INFINITY;
+                    for (int i = 0; i < 4 && worst > best; ++i) worst = std::min(worst, face_det(u, i, p).det6);
+                    if (worst > best) best = worst, t = u;
+                }
+            }
+            // too close to a face of t, or a new tet not certified positive: redraw
+            const double whole = orient_certified(x + 3 * tets[t][0], x + 3 * tets[t][1], x + 3 * tets[t][2],
+                                                  x + 3 * tets[t][3]).det6;
+            bool ok = whole > 0;
+            for (int i = 0; i < 4 && ok; ++i) {
+                const Orient o = face_det(t, i, p);
+                ok = o.sign > 0 && o.det6 >= min_bary * whole;
+            }
+            if (!ok) {
+                ++redrawn;
+                continue;
+            }
+            // split t 1->4: tet i is t with vertex i replaced by the new point
+            const int32_t v = int32_t(m.xyz.size() / 3);
+            m.xyz.insert(m.xyz.end(), p, p + 3);
+            const std::array<int32_t, 4> old = tets[t], old_nbr = nbr[t];
+            int32_t ids[4] = {int32_t(t), int32_t(tets.size()), int32_t(tets.size()) + 1, int32_t(tets.size()) + 2};
+            tets.resize(tets.size() + 3);
+            nbr.resize(nbr.size() + 3);
+            for (int i = 0; i < 4; ++i) {
+                std::array<int32_t, 4> q = old, qn{};
+                q[size_t(i)] = v;
+                for (int j = 0; j < 4; ++j) qn[size_t(j)] = j == i ? old_nbr[size_t(i)] : ids[j];
+                tets[size_t(ids[i])] = q;
+                nbr[size_t(ids[i])] = qn;
+                const int32_t outside = old_nbr[size_t(i)];
+                if (outside >= 0)
+                    for (int32_t& back : nbr[size_t(outside)])
+                        if (back == int32_t(t)) back = ids[i];
+            }
+            hint[cell] = ids[0];
+            break;
+        }
+    }
+    m.tets.clear();
+    m.tets.reserve(4 * tets.size());
+    for (const auto& t : tets) m.tets.insert(m.tets.end(), t.begin(), t.end());
+    m.index_base = 0;
+    m.faces.clear();
+    m.markers.clear();
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "lazy triangulation: unit cube (6 Kuhn tets) + %d uniformly random points (seed %llu) each "
+                  "inserted by a 1->4 split of its tet: %zu vertices, %zu tets; %ld points redrawn (barycentric "
+                  "coordinate < %g or a new tet not certified positive); %ld walks fell back to brute force",
+                  npoints, static_cast<unsigned long long>(seed), m.xyz.size() / 3, tets.size(), redrawn, min_bary,
+                  brute);
     note = buf;
     return true;
 }
@@ -462,7 +642,27 @@ std::vector<Case> make_cases(const CaseOptions& opt, std::vector<std::string>& n
     notes.push_back("skipped the random sphere: bodt_bench was built without TetGen");
 #endif
 
-    // (d) jittered Kuhn boxes.
+    // (d) lazy triangulations of random points in the unit cube (paper 001's
+    // RAND2: 5086 vertices, i.e. the 8 corners and 5078 points).
+    std::vector<std::pair<std::string, int>> lazies = {{"rand.lazy", 5078}};
+    if (opt.large) lazies.push_back({"rand.lazy.large", 50780});
+    for (const auto& lz : lazies) {
+        const int npoints = lz.second;
+        const uint64_t seed = 0x1a2b0001ULL + uint64_t(npoints);
+        Case c;
+        c.name = lz.first;
+        c.kind = "random-lazy";
+        c.source = "unit cube, 6 Kuhn tets + " + std::to_string(npoints) +
+                   " random points inserted one by one by 1->4 splits (" + std::to_string(8 + npoints) +
+                   " vertices, " + std::to_string(6 + 3 * npoints) + " tets)";
+        c.prepare = [npoints, seed](PreparedMesh& pm, std::string& err) {
+            pm.from_file = false;
+            return make_lazy_cube(npoints, seed, 1e-6, pm.arrays, pm.note) || (err = pm.note, false);
+        };
+        cases.push_back(c);
+    }
+
+    // (e) jittered Kuhn boxes.
     std::vector<int> boxes = {12};  // 10368 tets
     if (opt.large) boxes.push_back(26);  // 105456 tets
     for (int n : boxes) {

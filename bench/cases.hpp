@@ -1,5 +1,6 @@
 // cases.hpp -- the inputs of bodt_bench: TetGen meshes of surfaces, tet mesh
-// files, a random sphere and jittered boxes.
+// files, a random sphere, lazy triangulations of random points in a cube and
+// jittered boxes.
 #ifndef BODT_BENCH_CASES_HPP
 #define BODT_BENCH_CASES_HPP
 
@@ -30,7 +31,8 @@ struct PreparedMesh {
 
 struct Case {
     std::string name;    // unique, file-name safe
-    std::string kind;    // "tetgen-surface", "file", "random-sphere", "box"
+    std::string kind;    // "tetgen-surface", "file", "random-sphere", "random-lazy",
+                         // "box"
     std::string source;  // the input file or a description
     // Makes the mesh; returns false with a message on failure.
     std::function<bool(PreparedMesh&, std::string&)> prepare;
@@ -38,7 +40,7 @@ struct Case {
 
 struct CaseOptions {
     std::string shared_dir;      // "" = no shared meshes
-    bool large = false;          // add the ~1e5-tet box
+    bool large = false;          // add the ~1e5-tet box and the ~1.5e5-tet lazy cube
     bool with_tetgen = false;    // filled in by the program (compiled with TetGen?)
     std::string temp_dir;        // where .gz files are decompressed
     std::vector<std::string> extra_surfaces;  // --surface FILE

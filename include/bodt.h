@@ -44,10 +44,10 @@ extern "C" {
 /* ---------------------------------------------------------------- version */
 
 #define BODT_VERSION_MAJOR 0
-#define BODT_VERSION_MINOR 3
+#define BODT_VERSION_MINOR 4
 #define BODT_VERSION_PATCH 0
 /* MAJOR * 10000 + MINOR * 100 + PATCH, comparable with bodt_version_number() */
-#define BODT_VERSION_NUMBER 300
+#define BODT_VERSION_NUMBER 400
 
 /* The version of the library actually loaded, e.g. "0.1.0". */
 BODT_API const char *bodt_version_string(void);
@@ -304,7 +304,18 @@ enum bodt_mode {
     BODT_MODE_BODT_BASIC = 3,
     /* B-ODT (the default): Algorithm 1 inside, Algorithm 2 on smooth surface
      * vertices, Algorithm 3 along feature lines, corners fixed. */
-    BODT_MODE_BODT = 4
+    BODT_MODE_BODT = 4,
+    /* Paper 001: each interior vertex of a poor tet (stretch below
+     * BODT_PARAM_POOR_QUALITY) minimises f = (1 - C) sum e(T) over interior
+     * tets + C sum e(T) over boundary tets (eq. 3.4), e = 1 / stretch
+     * (eq. 3.2), by quasi-Newton (DFP) with interval search and golden
+     * section (Algorithms 1-3).  A boundary tet is one with a vertex that
+     * does not move in this mode: on the boundary or an interface, or fixed.
+     * Boundary and interface vertices never move and the surface
+     * triangulation is kept.  With BODT_OP_FLIP, poor tets whose four
+     * vertices all stay put go to edge removal, edge swap or face swap
+     * (Algorithm 4). */
+    BODT_MODE_OPT_WEIGHTED = 5
 };
 
 BODT_API int bodt_set_mode(bodt_mesh *mesh, int mode);
@@ -342,7 +353,8 @@ enum bodt_param {
     /* int, default BODT_OPS_MODE_DEFAULT: which operations a step does, a
      * bitmask of enum bodt_op.  The mode's default is SMOOTH | FLIP | INSERT
      * for BODT_MODE_BODT (paper 000 Fig. 1: insertion where needed, then
-     * smoothing, repeated) and SMOOTH for the other modes. */
+     * smoothing, repeated), SMOOTH | FLIP for BODT_MODE_OPT_WEIGHTED (paper
+     * 001 sec. 2) and SMOOTH for the other modes. */
     BODT_PARAM_OPS = 8,
     /* int 0/1, default 0: 1 keeps every boundary and interface triangle as
      * it is (no split, flip or collapse there); BODT_MODE_LAPLACE and
@@ -357,22 +369,48 @@ enum bodt_param {
     /* int 0/1, default 0: 1 adds paper 002's conditions (sec. 3.4.4) to
      * every flip: some tet it replaces is not Delaunay and every tet it
      * makes is (with respect to the vertices involved). */
-    BODT_PARAM_DELAUNAY_FLIPS = 11
+    BODT_PARAM_DELAUNAY_FLIPS = 11,
+    /* double in [0, 1], default 0.75: the boundary weight C of eq. (3.4)
+     * (BODT_MODE_OPT_WEIGHTED).  0.5 weighs every tet alike; the paper
+     * recommends 0.7 to 0.8. */
+    BODT_PARAM_WEIGHT_C = 12,
+    /* double in [0, 1], default 0.5: the threshold gamma.  A tet with
+     * stretch below it is poor: BODT_MODE_OPT_WEIGHTED smooths the vertices
+     * of poor tets and swaps poor all-boundary tets (1 smooths every
+     * interior vertex). */
+    BODT_PARAM_POOR_QUALITY = 13,
+    /* double in [1e-12, 1], default 1e-3: the relative accuracy epsilon of
+     * the quasi-Newton.  A vertex stops when f changes by less than epsilon
+     * times f (Algorithm 1); the golden section stops when its interval is
+     * shorter than epsilon times the vertex's mean edge length (Alg. 2). */
+    BODT_PARAM_QN_EPSILON = 14,
+    /* int in [1, 1000], default 10: at most N quasi-Newton iterations per
+     * vertex and step (Algorithm 1). */
+    BODT_PARAM_QN_MAX_ITERATIONS = 15,
+    /* double in [1e-6, 10], default 0.05: the first step h0 of the interval
+     * search (Algorithm 3), in units of the vertex's mean edge length. */
+    BODT_PARAM_QN_INITIAL_STEP = 16,
+    /* double in [1.1, 10], default 2: the factor alpha by which the interval
+     * search grows its step (Algorithm 3). */
+    BODT_PARAM_QN_INTERVAL_GROWTH = 17
 };
 
 /*
  * Operations a step may do (BODT_PARAM_OPS).  Each connectivity change is
  * kept only if it raises the worst dihedral angle of the tets it touches
- * (after a few guarded ODT moves of the new vertices and, with
- * BODT_OP_SMOOTH, of the bad tet's own interior vertices): a step never
- * makes the mesh's worst tet worse.  Without BODT_OP_SMOOTH no input vertex
- * moves.
+ * (after a few guarded moves of the new vertices and, with BODT_OP_SMOOTH,
+ * of the bad tet's own interior vertices: ODT moves, quasi-Newton ones in
+ * BODT_MODE_OPT_WEIGHTED, where the interior vertices of the tets a flip
+ * makes move too): a step never makes the mesh's worst tet worse.  Without
+ * BODT_OP_SMOOTH no input vertex moves.
  */
 enum bodt_op {
     BODT_OP_SMOOTH = 1,   /* move vertices (the mode's smoothing)           */
     BODT_OP_FLIP = 2,     /* edge removal and 2-3 flips around tets with an
                              angle outside [30, 150] degrees (paper 001
-                             Algorithm 4, for every bad tet)                */
+                             Algorithm 4, for every bad tet); in
+                             BODT_MODE_OPT_WEIGHTED around poor tets whose
+                             vertices all stay put, as in the paper        */
     BODT_OP_INSERT = 4,   /* split spades, caps and slivers (paper 000
                              sec. 2.3), conforming: every tet on the split
                              edge or face is split                          */

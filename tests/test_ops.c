@@ -679,8 +679,8 @@ static void test_params(void **state) {
     assert_int_equal(bodt_get_param_int(h, BODT_PARAM_OPS, NULL), E);
     assert_int_equal(bodt_get_param_double(h, BODT_PARAM_BAD_ANGLE, NULL), E);
     /* the key after the last is unknown */
-    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_DELAUNAY_FLIPS + 1, 0), E);
-    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_DELAUNAY_FLIPS + 1, 0.0), E);
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_QN_INTERVAL_GROWTH + 1, 0), E);
+    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_QN_INTERVAL_GROWTH + 1, 0.0), E);
 }
 
 /* ----------------------------------------------------------- default ops */

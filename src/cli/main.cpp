@@ -31,6 +31,11 @@ const char* kUsageText =
     "                          tangent plane (Algorithms 1 and 2)\n"
     "                        odt: interior vertices only (Algorithm 1)\n"
     "                        laplace: interior vertices to their neighbours' mean\n"
+    "                        opt-weighted: paper 001: interior vertices of poor\n"
+    "                          tets minimise a sum of inverse stretch, boundary\n"
+    "                          tets weighted by C (quasi-Newton); poor tets whose\n"
+    "                          vertices are all on the boundary are swapped away;\n"
+    "                          the boundary is kept as it is\n"
     "                      Boundary moves keep the volume; no mode inverts a tet.\n"
     "      --iterations N    at most N improvement steps (default 20); stops\n"
     "                        earlier when the vertices stop moving and the\n"
@@ -40,12 +45,14 @@ const char* kUsageText =
     "                          flip: edge removal and 2-3 flips around bad tets\n"
     "                          insert: split spades, caps and slivers\n"
     "                          collapse: collapse the short edge of bad tets\n"
-    "                        or default: smooth,flip,insert in mode bodt, smooth\n"
-    "                        in the other modes.  A change of connectivity is\n"
+    "                        or default: smooth,flip,insert in mode bodt,\n"
+    "                        smooth,flip in opt-weighted (flip: around poor tets\n"
+    "                        whose vertices are all on the boundary), smooth in\n"
+    "                        the other modes.  A change of connectivity is\n"
     "                        kept only if it makes the worst tets it touches\n"
     "                        better; the surface keeps its shape.\n"
     "      --keep-surface    leave every boundary and interface triangle as it is\n"
-    "                        (odt and laplace always do)\n"
+    "                        (odt, laplace and opt-weighted always do)\n"
     "      The summary gives the steps done and the flips, inserted vertices and\n"
     "      collapsed edges in all.\n"
     "  quality MESH [--json]\n"
@@ -161,7 +168,8 @@ struct ModeName {
     int mode;
 };
 constexpr ModeName kModes[] = {
-    {"bodt", BODT_MODE_BODT}, {"bodt-basic", BODT_MODE_BODT_BASIC}, {"odt", BODT_MODE_ODT}, {"laplace", BODT_MODE_LAPLACE}};
+    {"bodt", BODT_MODE_BODT}, {"bodt-basic", BODT_MODE_BODT_BASIC}, {"odt", BODT_MODE_ODT},
+    {"laplace", BODT_MODE_LAPLACE}, {"opt-weighted", BODT_MODE_OPT_WEIGHTED}};
 
 struct OpName {
     const char* name;
@@ -231,7 +239,7 @@ int cmd_improve(const std::vector<std::string>& args) {
                 const ModeName* found = nullptr;
                 for (const ModeName& m : kModes)
                     if (value == m.name) found = &m;
-                if (!found) return usage_error("unknown mode '" + value + "' (known: bodt, bodt-basic, odt, laplace)");
+                if (!found) return usage_error("unknown mode '" + value + "' (known: bodt, bodt-basic, odt, laplace, opt-weighted)");
                 mode = found->mode;
             } else {
                 char* end = nullptr;

@@ -91,6 +91,7 @@ public:
     int32_t num_tets() const { return static_cast<int32_t>(tets.size()); }
     int32_t num_input_vertices() const { return num_vertices() - static_cast<int32_t>(new_parents.size()); }
 
+    const Tet& tet(int32_t t) const { return tets[t]; }
     TetPoints tet_points(int32_t t) const {
         const Tet& q = tets[t];
         return {points[q[0]], points[q[1]], points[q[2]], points[q[3]]};

@@ -6,6 +6,7 @@
 #include "smoothing/bodt_smoother.hpp"
 #include "smoothing/laplace.hpp"
 #include "smoothing/move_guard.hpp"
+#include "smoothing/opt_weighted.hpp"
 #include "topology/topology_pass.hpp"
 
 #include <string>
@@ -29,7 +30,8 @@ void count_outcome(MoveOutcome outcome, double distance, StepReport& report) {
 }  // namespace
 
 void Improver::set_mode(int mode) {
-    if (mode != BODT_MODE_LAPLACE && mode != BODT_MODE_ODT && mode != BODT_MODE_BODT_BASIC && mode != BODT_MODE_BODT)
+    if (mode != BODT_MODE_LAPLACE && mode != BODT_MODE_ODT && mode != BODT_MODE_BODT_BASIC && mode != BODT_MODE_BODT &&
+        mode != BODT_MODE_OPT_WEIGHTED)
         throw Error(BODT_ERR_INVALID_ARGUMENT, "unknown mode " + std::to_string(mode));
     mode_ = mode;
     invalidate_classes();
@@ -91,10 +93,58 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepRep
     }
 }
 
+QuasiNewtonSettings Improver::quasi_newton_settings() const {
+    QuasiNewtonSettings qn;
+    qn.epsilon = params_.qn_epsilon;
+    qn.max_iterations = params_.qn_max_iterations;
+    qn.initial_step = params_.qn_initial_step;
+    qn.growth = params_.qn_growth;
+    return qn;
+}
+
+// Paper 001 sec. 2, steps (2), (3) and (5): the work set is the vertices of
+// poor tets; each free one moves to the minimiser of its weighted star
+// objective (eq. 3.4), through the guard.
+void Improver::sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const {
+    const VertexClasses& cls = classes(mesh, surfaces);
+    OptWeightedSmoother smoother(cls.cls, ElementWeights::from_c(params_.weight_c), quasi_newton_settings());
+    MoveGuard guard({params_.min_stretch, params_.backtrack_steps, params_.never_worse != 0});
+    const std::vector<uint8_t> work = poor_vertices(mesh, params_.poor_quality);
+    const std::vector<FaceKey> no_faces;
+    for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
+        Vec3 target;
+        if (!work[v] || !smoother.target(mesh, v, target)) continue;
+        double distance = 0.0;
+        const MoveOutcome outcome = guard.move(mesh, v, target, no_faces, distance);
+        count_outcome(outcome, distance, report);
+    }
+}
+
 int32_t Improver::ops() const {
     if (params_.ops >= 0) return params_.ops;
-    return mode_ == BODT_MODE_BODT ? BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT : BODT_OP_SMOOTH;
+    if (mode_ == BODT_MODE_BODT) return BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT;
+    if (mode_ == BODT_MODE_OPT_WEIGHTED) return BODT_OP_SMOOTH | BODT_OP_FLIP;
+    return BODT_OP_SMOOTH;
 }
+
+namespace {
+
+// The relocation of paper 001's mode inside a tentative change: the
+// quasi-Newton minimiser of the vertex's weighted star objective.
+RelocationTarget weighted_relocation(ElementWeights weights, const QuasiNewtonSettings& qn) {
+    return [weights, qn](const EditableMesh& mesh, int32_t v, Vec3& target) {
+        if (mesh.vertex_class(v) != VertexClass::Interior) return false;
+        const auto is_free = [&mesh](int32_t u) { return mesh.vertex_class(u) == VertexClass::Interior; };
+        const std::vector<int32_t>& tets = mesh.tets_of(v);
+        WeightedStar star;
+        gather_weighted_star(mesh, tets.data(), tets.data() + tets.size(), v, is_free, weights, star);
+        const QuasiNewtonResult r = minimize_quasi_newton(star, mesh.point(v), qn);
+        target = r.x;
+        return r.iterations > 0;
+    };
+}
+
+}  // namespace
 
 // Flips, insertion and collapse on an editable copy, written back only when
 // something changed.  A mesh holding accepted inverted tets is left to the
@@ -107,11 +157,16 @@ void Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     TopologySettings settings;
     settings.rules.surface_may_change =
         params_.keep_surface == 0 && (mode_ == BODT_MODE_BODT || mode_ == BODT_MODE_BODT_BASIC);
+    const bool paper_001 = mode_ == BODT_MODE_OPT_WEIGHTED;
     settings.rules.min_stretch = params_.min_stretch;
     settings.rules.never_worse = params_.never_worse != 0;
     settings.rules.delaunay = params_.delaunay_flips != 0;
     settings.bad_angle_deg = params_.bad_angle;
-    settings.flip = bits & BODT_OP_FLIP;
+    settings.flip = (bits & BODT_OP_FLIP) && !paper_001;
+    settings.swap_all_boundary = (bits & BODT_OP_FLIP) && paper_001;
+    settings.poor_stretch = params_.poor_quality;
+    if (paper_001)
+        settings.relocation_target = weighted_relocation(ElementWeights::from_c(params_.weight_c), quasi_newton_settings());
     settings.insert = bits & BODT_OP_INSERT;
     settings.collapse = bits & BODT_OP_COLLAPSE;
     // Without smoothing only the vertices an operation makes may move, and
@@ -145,6 +200,7 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
     try {
         if (ops() & BODT_OP_SMOOTH) {
             if (mode_ == BODT_MODE_LAPLACE) sweep_laplace(mesh, report);
+            else if (mode_ == BODT_MODE_OPT_WEIGHTED) sweep_opt_weighted(mesh, surfaces, report);
             else sweep_bodt(mesh, surfaces, report);
         }
         change_topology(mesh, surfaces, report);

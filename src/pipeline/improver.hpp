@@ -1,7 +1,10 @@
 // The improvement pipeline of a mesh handle: the current mode, its
 // parameters, the vertex classes the mode works with, and `step`: one
 // Gauss-Seidel sweep over the vertices, then flips and vertex insertion
-// where tets are still bad (paper 000 Fig. 1).
+// where tets are still bad (paper 000 Fig. 1), or, in
+// BODT_MODE_OPT_WEIGHTED, one round of paper 001's combined algorithm
+// (sec. 2): quasi-Newton on the vertices of poor tets, then swaps of the
+// poor tets whose vertices all stay put.
 #pragma once
 
 #include "bodt.h"
@@ -9,6 +12,7 @@
 #include "mesh/region_surfaces.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "pipeline/params.hpp"
+#include "smoothing/quasi_newton.hpp"
 
 #include <cstdint>
 
@@ -50,6 +54,8 @@ public:
 private:
     void sweep_laplace(TetMesh& mesh, StepReport& report) const;
     void sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const;
+    void sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const;
+    QuasiNewtonSettings quasi_newton_settings() const;
     void change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
 
     int mode_ = BODT_MODE_BODT;

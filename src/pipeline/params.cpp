@@ -4,6 +4,7 @@
 #include "common/error.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace bodt {
@@ -31,6 +32,12 @@ constexpr Info kParams[] = {
     {BODT_PARAM_KEEP_SURFACE, "BODT_PARAM_KEEP_SURFACE", Type::Int, 0, 1},
     {BODT_PARAM_BAD_ANGLE, "BODT_PARAM_BAD_ANGLE", Type::Double, 0.0, 60.0},
     {BODT_PARAM_DELAUNAY_FLIPS, "BODT_PARAM_DELAUNAY_FLIPS", Type::Int, 0, 1},
+    {BODT_PARAM_WEIGHT_C, "BODT_PARAM_WEIGHT_C", Type::Double, 0.0, 1.0},
+    {BODT_PARAM_POOR_QUALITY, "BODT_PARAM_POOR_QUALITY", Type::Double, 0.0, 1.0},
+    {BODT_PARAM_QN_EPSILON, "BODT_PARAM_QN_EPSILON", Type::Double, 1e-12, 1.0},
+    {BODT_PARAM_QN_MAX_ITERATIONS, "BODT_PARAM_QN_MAX_ITERATIONS", Type::Int, 1, 1000},
+    {BODT_PARAM_QN_INITIAL_STEP, "BODT_PARAM_QN_INITIAL_STEP", Type::Double, 1e-6, 10.0},
+    {BODT_PARAM_QN_INTERVAL_GROWTH, "BODT_PARAM_QN_INTERVAL_GROWTH", Type::Double, 1.1, 10.0},
 };
 
 const Info& lookup(int key, Type want) {
@@ -46,7 +53,10 @@ const Info& lookup(int key, Type want) {
 }
 
 std::string show(const Info& info, double value) {
-    return info.type == Type::Int ? std::to_string(static_cast<long long>(value)) : std::to_string(value);
+    if (info.type == Type::Int) return std::to_string(static_cast<long long>(value));
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
 }
 
 void check_range(const Info& info, double value) {
@@ -62,6 +72,7 @@ int32_t& int_field(Params& p, int key) {
         case BODT_PARAM_OPS: return p.ops;
         case BODT_PARAM_KEEP_SURFACE: return p.keep_surface;
         case BODT_PARAM_DELAUNAY_FLIPS: return p.delaunay_flips;
+        case BODT_PARAM_QN_MAX_ITERATIONS: return p.qn_max_iterations;
         default: return p.never_worse;
     }
 }
@@ -74,6 +85,11 @@ double& double_field(Params& p, int key) {
         case BODT_PARAM_FEATURE_ANGLE: return p.feature_angle;
         case BODT_PARAM_EDGE_RATIO: return p.edge_ratio;
         case BODT_PARAM_BAD_ANGLE: return p.bad_angle;
+        case BODT_PARAM_WEIGHT_C: return p.weight_c;
+        case BODT_PARAM_POOR_QUALITY: return p.poor_quality;
+        case BODT_PARAM_QN_EPSILON: return p.qn_epsilon;
+        case BODT_PARAM_QN_INITIAL_STEP: return p.qn_initial_step;
+        case BODT_PARAM_QN_INTERVAL_GROWTH: return p.qn_growth;
         default: return p.corner_ratio;
     }
 }

@@ -17,6 +17,12 @@ struct Params {
     int32_t keep_surface = 0;      // BODT_PARAM_KEEP_SURFACE
     double bad_angle = 15.0;       // BODT_PARAM_BAD_ANGLE, degrees
     int32_t delaunay_flips = 0;    // BODT_PARAM_DELAUNAY_FLIPS
+    double weight_c = 0.75;        // BODT_PARAM_WEIGHT_C
+    double poor_quality = 0.5;     // BODT_PARAM_POOR_QUALITY
+    double qn_epsilon = 1e-3;      // BODT_PARAM_QN_EPSILON
+    int32_t qn_max_iterations = 10;   // BODT_PARAM_QN_MAX_ITERATIONS
+    double qn_initial_step = 0.05; // BODT_PARAM_QN_INITIAL_STEP
+    double qn_growth = 2.0;        // BODT_PARAM_QN_INTERVAL_GROWTH
 };
 
 // Each throws Error(BODT_ERR_INVALID_ARGUMENT) for an unknown key, a key of

@@ -16,7 +16,10 @@ constexpr double kDegree = M_PI / 180.0;
 const double kFlipBelowSine = std::sin(30.0 * kDegree);
 // A change must raise the worst sine by more than round-off.
 constexpr double kGain = 1e-12;
-constexpr int kRelocationRounds = 3;
+// ODT relocation is one fixed-point step per round: a few rounds let the
+// new vertices settle together.  A custom target (a full minimisation)
+// gets one.
+constexpr int kOdtRelocationRounds = 3;
 
 // The tets touching any of `vs`, each once.
 std::vector<int32_t> region_of(const EditableMesh& mesh, const std::vector<int32_t>& vs) {
@@ -27,25 +30,32 @@ std::vector<int32_t> region_of(const EditableMesh& mesh, const std::vector<int32
     return out;
 }
 
-// One guarded ODT move of an interior vertex (paper 000 eq. 3: the
-// volume-weighted mean of the circumcentres of its star), halved until no
-// tet of the star ends worse than the star's worst before.
-void relocate(EditableMesh& mesh, int32_t v, const TopologyRules& rules) {
-    if (mesh.vertex_class(v) != VertexClass::Interior) return;
-    const std::vector<int32_t> star = mesh.tets_of(v);
+// ODT's target for an interior vertex (paper 000 eq. 3): the
+// volume-weighted mean of the circumcentres of its star.
+bool odt_target(const EditableMesh& mesh, int32_t v, Vec3& target) {
+    if (mesh.vertex_class(v) != VertexClass::Interior) return false;
     Vec3 sum = Vec3::Zero();
     double volume = 0.0;
-    for (int32_t t : star) {
+    for (int32_t t : mesh.tets_of(v)) {
         const TetPoints p = mesh.tet_points(t);
         const double vol = signed_volume(p[0], p[1], p[2], p[3]);
         sum += vol * circumcenter(p);
         volume += vol;
     }
-    if (!(volume > 0.0)) return;
-    const Vec3 start = mesh.point(v);
-    const Vec3 target = sum / volume;
+    if (!(volume > 0.0)) return false;
+    target = sum / volume;
+    return true;
+}
+
+// One guarded move of vertex v to the settings' relocation target, halved
+// until no tet of its star ends worse than the star's worst before.
+void relocate(EditableMesh& mesh, int32_t v, const TopologySettings& s) {
+    Vec3 target;
+    if (!(s.relocation_target ? s.relocation_target(mesh, v, target) : odt_target(mesh, v, target))) return;
     if (!target.allFinite()) return;
-    const TetLimits limits = limits_for(mesh, star, rules, worst_sine(mesh, star));
+    const std::vector<int32_t> star = mesh.tets_of(v);
+    const Vec3 start = mesh.point(v);
+    const TetLimits limits = limits_for(mesh, star, s.rules, worst_sine(mesh, star));
     for (double f = 1.0; f > 0.05; f *= 0.5) {
         mesh.move_vertex(v, start + f * (target - start));
         bool ok = true;
@@ -134,7 +144,8 @@ std::vector<int32_t> bad_tets_by_quality(const EditableMesh& mesh, double bad_si
 // ones had); else rolls it back.  Tets that did not change are left out of
 // the comparison: an unrelated bad neighbour must not veto a fix.
 template <class Change>
-bool try_change(EditableMesh& mesh, int32_t t, const TopologyRules& rules, bool move_old, Change&& change) {
+bool try_change(EditableMesh& mesh, int32_t t, const TopologySettings& settings, Change&& change) {
+    const TopologyRules& rules = settings.rules;
     const Tet q = mesh.tet(t);
     std::vector<int32_t> involved(q.begin(), q.end());
     const std::vector<int32_t> region = region_of(mesh, involved);
@@ -155,13 +166,36 @@ bool try_change(EditableMesh& mesh, int32_t t, const TopologyRules& rules, bool 
     // The new vertices move (and, when the step smooths, the old ones involved).
     std::vector<int32_t> fresh, movers;
     for (int32_t v : made) (v >= old_vertices ? fresh : movers).push_back(v);
-    if (move_old) movers.insert(movers.end(), q.begin(), q.end());
+    if (settings.relocate_old) movers.insert(movers.end(), q.begin(), q.end());
     else movers.clear();
     movers.insert(movers.begin(), fresh.begin(), fresh.end());
     involved.insert(involved.end(), made.begin(), made.end());
-    for (int round = 0; round < kRelocationRounds; ++round)
+    // A new tet none of whose vertices will move keeps its shape; if it is
+    // no better than the worst tet around, the change cannot pass the test
+    // below (which compares with a subset of those tets), so skip the
+    // relocation.
+    const auto moves = [&](int32_t v) {
+        return mesh.vertex_class(v) == VertexClass::Interior && std::count(movers.begin(), movers.end(), v);
+    };
+    double fixed_after = 1.0;
+    for (int32_t s = old_capacity; s < mesh.tet_capacity(); ++s) {
+        if (!mesh.alive(s)) continue;
+        const Tet& n = mesh.tet(s);
+        if (!moves(n[0]) && !moves(n[1]) && !moves(n[2]) && !moves(n[3]))
+            fixed_after = std::min(fixed_after, min_dihedral_sine(mesh.tet_points(s)));
+    }
+    if (fixed_after < 1.0) {
+        double region_worst = 1.0;
+        for (const TetPoints& p : shapes_before) region_worst = std::min(region_worst, min_dihedral_sine(p));
+        if (!(fixed_after > region_worst + kGain)) {
+            mesh.rollback(mark);
+            return false;
+        }
+    }
+    const int rounds = settings.relocation_target ? 1 : kOdtRelocationRounds;
+    for (int round = 0; round < rounds; ++round)
         for (int32_t v : movers)
-            if (!mesh.tets_of(v).empty()) relocate(mesh, v, rules);
+            if (!mesh.tets_of(v).empty()) relocate(mesh, v, settings);
     // A tet changed if it is gone, new, or has moved.
     double before = 1.0, after = 1.0;
     CosineRange range_before{-1.0, 1.0}, range_after{-1.0, 1.0};
@@ -198,6 +232,65 @@ bool try_change(EditableMesh& mesh, int32_t t, const TopologyRules& rules, bool 
     return true;
 }
 
+// The vertices of the tets made since tet slot `first` (a flip appends its
+// tets): the vertices whose relocation may improve them.
+std::vector<int32_t> vertices_of_tets_from(const EditableMesh& mesh, int32_t first) {
+    std::vector<int32_t> out;
+    for (int32_t t = first; t < mesh.tet_capacity(); ++t)
+        if (mesh.alive(t)) out.insert(out.end(), mesh.tet(t).begin(), mesh.tet(t).end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+// Paper 001 Algorithm 4.  A poor tet whose four vertices all stay put is
+// beyond smoothing; it goes by edge removal (an edge in 3 tets), edge swap
+// (4 to kMaxEdgeRing tets) or face swap (2-3 on a face shared with another
+// tet), whichever is first kept by try_change after the interior vertices of
+// the new tets moved.  The paper keeps a swap even when it does not improve
+// the tets, trusting the smoothing after it; judging after the relocation
+// keeps that intent without ever making the worst tet worse.
+int32_t all_boundary_pass(EditableMesh& mesh, const TopologySettings& s, const TopologyRules& loose) {
+    std::vector<std::pair<double, int32_t>> poor;
+    for (int32_t t = 0; t < mesh.tet_capacity(); ++t) {
+        if (!mesh.alive(t)) continue;
+        bool all_boundary = true;
+        for (int32_t v : mesh.tet(t)) all_boundary = all_boundary && mesh.vertex_class(v) != VertexClass::Interior;
+        const double q = stretch(mesh.tet_points(t));
+        if (all_boundary && q < s.poor_stretch) poor.push_back({q, t});
+    }
+    std::sort(poor.begin(), poor.end());
+    int32_t swaps = 0;
+    for (const auto& entry : poor) {
+        const int32_t t = entry.second;
+        if (!mesh.alive(t)) continue;
+        const Tet q = mesh.tet(t);
+        const auto swap = [&](auto&& op) {
+            return try_change(mesh, t, s, [&] {
+                const int32_t first = mesh.tet_capacity();
+                return op() ? vertices_of_tets_from(mesh, first) : std::vector<int32_t>{};
+            });
+        };
+        bool done = false;
+        for (const auto& e : kEdgeVertex) {
+            if (done) break;
+            const int32_t a = q[e[0]], b = q[e[1]];
+            const size_t ring = mesh.tets_holding({a, b}).size();
+            if (ring < 3 || ring > static_cast<size_t>(kMaxEdgeRing)) continue;
+            done = swap([&] { return remove_edge(mesh, a, b, loose, 0.0); });
+        }
+        for (const auto& f : kFaceVertex) {
+            if (done) break;
+            const FaceKey face = FaceKey::of(q[f[0]], q[f[1]], q[f[2]]);
+            int32_t pair[2];
+            if (mesh.face_tets(face, pair) != 2) continue;
+            done = swap([&] { return flip_23(mesh, face, loose, 0.0); });
+        }
+        swaps += done;
+    }
+    return swaps;
+}
+
 }  // namespace
 
 TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s) {
@@ -208,13 +301,14 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s) {
     loose.never_worse = false;
     const double bad_sine = std::sin(s.bad_angle_deg * kDegree);
     if (s.flip) counts.flips += flip_pass(mesh, s.rules);
+    if (s.swap_all_boundary) counts.flips += all_boundary_pass(mesh, s, loose);
     if (s.insert || s.collapse) {
         for (int32_t t : bad_tets_by_quality(mesh, bad_sine)) {
             if (!mesh.alive(t)) continue;
             const BadTet bad = classify_bad_tet(mesh.tet_points(t), s.bad_angle_deg);
             if (s.insert && (bad.kind == BadTetKind::Spade || bad.kind == BadTetKind::Cap || bad.kind == BadTetKind::Sliver)) {
                 int32_t made = 0;
-                if (try_change(mesh, t, s.rules, s.relocate_old, [&] {
+                if (try_change(mesh, t, s, [&] {
                         const std::vector<int32_t> v = insert_for(mesh, t, bad, loose);
                         made = static_cast<int32_t>(v.size());
                         return v;
@@ -229,7 +323,7 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s) {
                         (p[kEdgeVertex[shortest][1]] - p[kEdgeVertex[shortest][0]]).squaredNorm())
                         shortest = e;
                 const Tet q = mesh.tet(t);
-                if (try_change(mesh, t, s.rules, s.relocate_old, [&] {
+                if (try_change(mesh, t, s, [&] {
                         const int32_t kept = collapse_edge(mesh, q[kEdgeVertex[shortest][0]], q[kEdgeVertex[shortest][1]], loose, 0.0);
                         return kept >= 0 ? std::vector<int32_t>{kept} : std::vector<int32_t>{};
                     }))

@@ -1,5 +1,6 @@
 // The connectivity half of a step: quality flips (paper 001 Algorithm 4,
-// generalised to every bad tet), vertex insertion for spades, caps and
+// generalised to every bad tet, or as printed: around poor tets whose
+// vertices all stay put), vertex insertion for spades, caps and
 // slivers (paper 000 sec. 2.3) and, on request, collapse of short edges
 // (paper 002 sec. 3.5).  Every change is tentative: it is kept only when
 // the worst dihedral sine of the tets it touched went up.
@@ -8,14 +9,25 @@
 #include "topology/operations.hpp"
 
 #include <cstdint>
+#include <functional>
 
 namespace bodt {
+
+// Where the relocation after a tentative change wants vertex v; false: v
+// stays.  Empty: ODT (paper 000 eq. 3) for Interior vertices.
+using RelocationTarget = std::function<bool(const EditableMesh& mesh, int32_t v, Vec3& target)>;
 
 struct TopologySettings {
     TopologyRules rules;
     double bad_angle_deg = 15.0;  // insertion and collapse work on tets with an angle outside [this, 180 - this]
     bool flip = true, insert = true, collapse = false;
+    // Paper 001 Algorithm 4: flips around poor tets (stretch below
+    // poor_stretch) whose four vertices all stay put (not Interior), judged
+    // after relocating the interior vertices of the tets they make.
+    bool swap_all_boundary = false;
+    double poor_stretch = 0.5;
     bool relocate_old = true;  // an insertion also relocates the bad tet's vertices (the step smooths)
+    RelocationTarget relocation_target;
 };
 
 struct TopologyCounts {

@@ -4,7 +4,8 @@
     test_cli.py --bodt PATH --data DIR --out DIR CASE
 
 CASE is one of quality_json, improve, improve_ops, exit_codes,
-improve_surface (with TetGen), surface_without_tetgen (without).  Every value checked comes from
+improve_opt_weighted, improve_surface (with TetGen), surface_without_tetgen
+(without).  Every value checked comes from
 running the command; expected mesh quality is recomputed here from the mesh
 file with plain Python (no library code).  Exits 0 on success, 1 on the
 first failed check.
@@ -408,6 +409,72 @@ def case_improve_ops(args):
     check(code == 0 and "--ops LIST" in out and "--keep-surface" in out, "--help does not document --ops: %r" % out)
 
 
+def boundary_triangles(tets):
+    """The faces of the tets that belong to one tet only, as sorted triples."""
+    count = {}
+    for t in tets:
+        for f in ((t[1], t[2], t[3]), (t[0], t[2], t[3]), (t[0], t[1], t[3]), (t[0], t[1], t[2])):
+            key = tuple(sorted(f))
+            count[key] = count.get(key, 0) + 1
+    return sorted(k for k, n in count.items() if n == 1)
+
+
+def case_improve_opt_weighted(args):
+    """--mode opt-weighted (paper 001) on a jittered 4 x 4 x 4 box: the
+    boundary vertices and triangles stay, the worst angle does not get worse,
+    interior vertices move; an unknown mode lists opt-weighted."""
+    os.makedirs(args.out, exist_ok=True)
+    src = os.path.join(args.out, "box4_ow_in.mesh")
+    write_jittered_box(src, 4, 2.0, 0.4, 7)
+    q0 = check_valid_box(src, "the jittered box")
+    p0, t0 = read_medit(src)
+    dst = os.path.join(args.out, "box4_ow_out.mesh")
+    if os.path.exists(dst):
+        os.remove(dst)
+    code, summary, out, err = improve_summary(args, src, dst, "--mode", "opt-weighted")
+    check(code == 0, "--mode opt-weighted exited %d: %s" % (code, err))
+    check(summary is not None, "--mode opt-weighted: no summary line in %r" % out)
+    check(os.path.exists(dst), "%s was not written" % dst)
+    if code != 0 or not os.path.exists(dst):
+        return
+    if summary:
+        check(summary[0] >= 1 and summary[2] == 0 and summary[3] == 0,
+              "--mode opt-weighted: summary %r (no insertion or collapse in this mode)" % (summary,))
+    p1, t1 = read_medit(dst)
+    check(len(p1) == len(p0), "%d vertices, %d in the input" % (len(p1), len(p0)))
+    on_boundary = [v for v, p in enumerate(p0) if any(c == 0.0 or c == 2.0 for c in p)]
+    check(len(on_boundary) == 125 - 27, "%d boundary vertices in the input" % len(on_boundary))
+    moved = [v for v in on_boundary if p1[v] != p0[v]]
+    check(not moved, "boundary vertices moved: %r" % moved[:10])
+    check(boundary_triangles(t1) == boundary_triangles(t0), "the boundary triangles changed")
+    check(sorted(f for f, _ in read_medit_triangles(dst)) == boundary_triangles(t0),
+          "the written Triangles are not the input's boundary triangles")
+    interior_moved = [v for v in range(len(p0)) if v not in on_boundary and p1[v] != p0[v]]
+    check(len(interior_moved) > 0, "no interior vertex moved")
+    q1 = check_valid_box(dst, "--mode opt-weighted")
+    check(q1["min_dihedral"] >= q0["min_dihedral"],
+          "min dihedral went down: %r -> %r" % (q0["min_dihedral"], q1["min_dihedral"]))
+    check(q1["stretch_min"] > q0["stretch_min"],
+          "min stretch did not go up: %r -> %r" % (q0["stretch_min"], q1["stretch_min"]))
+    print("opt-weighted: summary %r, min dihedral %.3f -> %.3f, min stretch %.4f -> %.4f, %d interior vertices moved"
+          % (summary, q0["min_dihedral"], q1["min_dihedral"], q0["stretch_min"], q1["stretch_min"],
+             len(interior_moved)))
+    # the bodt command's own quality report agrees with the file
+    after = quality_json(args, dst)
+    if after is not None:
+        check(abs(after["min_dihedral"] - q1["min_dihedral"]) <= 1e-6, "quality --json min dihedral %r, file %r" %
+              (after["min_dihedral"], q1["min_dihedral"]))
+        check(after["inverted"] == 0, "inverted %r" % after["inverted"])
+    # an unknown mode: usage error naming the known modes, opt-weighted among them
+    bad = os.path.join(args.out, "box4_ow_refused.mesh")
+    code, out, err = run(args.bodt, "improve", src, bad, "--mode", "nonsense")
+    check(code == 1, "--mode nonsense: exit %d, expected 1" % code)
+    check("nonsense" in err and "opt-weighted" in err, "--mode nonsense: stderr %r does not list opt-weighted" % err)
+    check(not os.path.exists(bad), "a refused --mode wrote %s" % bad)
+    code, out, err = run(args.bodt, "--help")
+    check(code == 0 and "opt-weighted" in out, "--help does not document opt-weighted")
+
+
 def case_exit_codes(args):
     os.makedirs(args.out, exist_ok=True)
     good = os.path.join(args.data, "box2.mesh")
@@ -511,7 +578,7 @@ def main():
     ap.add_argument("--data", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("case", choices=["quality_json", "improve", "improve_ops", "exit_codes", "improve_surface",
-                                     "surface_without_tetgen"])
+                                     "surface_without_tetgen", "improve_opt_weighted"])
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     globals()["case_" + args.case](args)
