@@ -36,6 +36,7 @@
  *                 themselves along a line: BODT still works, volumes stay,
  *                 non-manifold vertices are FIXED and FIXED vertices stay
  */
+#include "api_checks.h"
 #include "bodt.h"
 #include "cleanup.h"
 #include "mesh_gen.h"
@@ -96,12 +97,6 @@ static void step_ok(bodt_mesh *h, bodt_step_report *r) {
     r->size = sizeof *r;
     const int st = bodt_step(h, r);
     if (st != BODT_OK) fail_msg("bodt_step: %s: %s", bodt_status_string(st), bodt_mesh_last_error(h));
-}
-
-static void get_quality(const bodt_mesh *h, bodt_quality *q) {
-    memset(q, 0, sizeof *q);
-    q->size = sizeof *q;
-    assert_int_equal(bodt_mesh_quality(h, q), BODT_OK);
 }
 
 /* Sum of the signed tet volumes of region `region` (any region if < 0). */

@@ -7,6 +7,7 @@
  * message, refused setters leaving the mesh as it was, NULL handles, too
  * small capacities, params and modes, sized structs.
  */
+#include "api_checks.h"
 #include "bodt.h"
 #include "cleanup.h"
 #include "mesh_gen.h"
@@ -43,12 +44,6 @@ static void create_ex_ok(int32_t nv, const double *xyz, int32_t nt, const int32_
 static bodt_mesh *box_handle(test_mesh *m, int n, double jitter, uint64_t seed) {
     assert_int_equal(tm_make_box(m, n, jitter, seed), 0);
     return create_ok(m, m->tets, 0);
-}
-
-static void get_quality(const bodt_mesh *h, bodt_quality *q) {
-    memset(q, 0, sizeof *q);
-    q->size = sizeof *q;
-    assert_int_equal(bodt_mesh_quality(h, q), BODT_OK);
 }
 
 static void sort3(int32_t *v) {

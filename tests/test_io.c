@@ -9,6 +9,7 @@
  * Files are written under BODT_TEST_IO_DIR (in the build tree); the
  * malformed ones are written here from string literals.
  */
+#include "api_checks.h"
 #include "bodt.h"
 #include "cleanup.h"
 #include "mesh_gen.h"
@@ -105,12 +106,6 @@ static void assert_same_mesh(const bodt_mesh *a, const bodt_mesh *b, int compare
         assert_memory_equal(ia, ib, (size_t)nva * sizeof *ia);
     }
     free(da), free(db), free(ia), free(ib), free(ma), free(mb);
-}
-
-static void get_quality(const bodt_mesh *h, bodt_quality *q) {
-    memset(q, 0, sizeof *q);
-    q->size = sizeof *q;
-    assert_int_equal(bodt_mesh_quality(h, q), BODT_OK);
 }
 
 /* A 3 x 3 x 3 jittered box with two regions (an interface), markers on two

@@ -6,6 +6,7 @@
  * handles smoothed in two threads give the same result as one after the
  * other.
  */
+#include "api_checks.h"
 #include "bodt.h"
 #include "mesh_gen.h"
 #include "test_util.h"
@@ -20,12 +21,6 @@ static bodt_mesh *create_ok(const test_mesh *m) {
     if (st != BODT_OK) fail_msg("create: %s", bodt_mesh_last_error(NULL));
     assert_int_equal(bodt_set_mode(h, BODT_MODE_LAPLACE), BODT_OK);
     return h;
-}
-
-static void get_quality(const bodt_mesh *h, bodt_quality *q) {
-    memset(q, 0, sizeof *q);
-    q->size = sizeof *q;
-    assert_int_equal(bodt_mesh_quality(h, q), BODT_OK);
 }
 
 static double *get_xyz(const bodt_mesh *h, int32_t nv) {

@@ -43,6 +43,7 @@
  *   files         the changed mesh written as Medit and TetGen (under
  *                 BODT_TEST_OPS_DIR) and read back unchanged
  */
+#include "api_checks.h"
 #include "bodt.h"
 #include "cleanup.h"
 #include "mesh_gen.h"
@@ -131,12 +132,6 @@ static snap take(const bodt_mesh *h, int base) {
     }
     for (int32_t t = 0; t < s.nt; ++t) s.origins[t] -= base;
     return s;
-}
-
-static void get_quality(const bodt_mesh *h, bodt_quality *q) {
-    memset(q, 0, sizeof *q);
-    q->size = sizeof *q;
-    assert_int_equal(bodt_mesh_quality(h, q), BODT_OK);
 }
 
 static void step_ok(bodt_mesh *h, bodt_step_report *r) {

@@ -30,6 +30,7 @@
  *                  a known status; after an error the mesh is unchanged;
  *                  no more inverted tets than before
  */
+#include "api_checks.h"
 #include "bodt.h"
 #include "cleanup.h"
 #include "mesh_gen.h"
@@ -70,12 +71,6 @@ static bodt_mesh *create_mode5(const test_mesh *m) {
     bodt_mesh *h = create_ok(m->nverts, m->xyz, m->ntets, m->tets, 0);
     assert_int_equal(bodt_set_mode(h, BODT_MODE_OPT_WEIGHTED), BODT_OK);
     return h;
-}
-
-static void get_quality(const bodt_mesh *h, bodt_quality *q) {
-    memset(q, 0, sizeof *q);
-    q->size = sizeof *q;
-    assert_int_equal(bodt_mesh_quality(h, q), BODT_OK);
 }
 
 /* Everything a check below needs, taken through the getters. */

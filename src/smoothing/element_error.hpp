@@ -13,18 +13,6 @@ namespace bodt {
 
 inline constexpr double kSixRootSix = 14.696938456699067;  // 6 sqrt(6)
 
-// e(T), eq. (3.2).
-inline double element_error(const TetPoints& p) {
-    const Orientation o = orient(p[0], p[1], p[2], p[3]);
-    if (o.sign <= 0) return std::numeric_limits<double>::infinity();
-    double area2 = 0.0;  // twice the total face area
-    for (const auto& f : kFaceVertex) area2 += (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
-    double lmax2 = 0.0;
-    for (const auto& e : kEdgeVertex) lmax2 = std::max(lmax2, (p[e[1]] - p[e[0]]).squaredNorm());
-    // (area2 / 2) * L / (6 sqrt6 * det6 / 6) = 3 area2 L / (6 sqrt6 det6)
-    return 3.0 * area2 * std::sqrt(lmax2) / (kSixRootSix * o.det6);
-}
-
 // e(T) and its gradient with respect to corner i.  With A the total face
 // area, L the longest edge and V the volume, e = A L / (6 sqrt6 V), so
 //   grad e = e (grad A / A + grad L / L - grad V / V),

@@ -20,7 +20,7 @@ void WeightedStar::add(const TetPoints& p, int corner, double weight) {
     terms_.push_back(t);
 }
 
-// Eq. (3.4) on the star, each e(T) as in element_error but from the
+// Eq. (3.4) on the star, each e(T) as in element_error_gradient but from the
 // precomputed parts.  A tet whose volume is not positive counts +infinity
 // (here without the certified sign: the move guard certifies every move).
 double WeightedStar::value(const Vec3& x) const {
