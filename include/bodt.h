@@ -44,10 +44,10 @@ extern "C" {
 /* ---------------------------------------------------------------- version */
 
 #define BODT_VERSION_MAJOR 0
-#define BODT_VERSION_MINOR 4
+#define BODT_VERSION_MINOR 5
 #define BODT_VERSION_PATCH 0
 /* MAJOR * 10000 + MINOR * 100 + PATCH, comparable with bodt_version_number() */
-#define BODT_VERSION_NUMBER 400
+#define BODT_VERSION_NUMBER 500
 
 /* The version of the library actually loaded, e.g. "0.1.0". */
 BODT_API const char *bodt_version_string(void);
@@ -315,7 +315,22 @@ enum bodt_mode {
      * triangulation is kept.  With BODT_OP_FLIP, poor tets whose four
      * vertices all stay put go to edge removal, edge swap or face swap
      * (Algorithm 4). */
-    BODT_MODE_OPT_WEIGHTED = 5
+    BODT_MODE_OPT_WEIGHTED = 5,
+    /* Paper 002, for meshes deformed by a shape change (the input may hold
+     * inverted tets: BODT_CREATE_ACCEPT_INVERTED).  The part is modelled by
+     * its sharp edges (dihedral angle past BODT_PARAM_FEATURE_ANGLE), corners,
+     * chains fitted as lines, arcs or circles, and surface regions fitted as
+     * planes or cylinders (bodt_mesh_get_geometry_classes).  Each step:
+     * inverted tets removed by half-edge collapses (sec. 3.5.3), degenerate
+     * ones by split + collapse (sec. 3.5.2), then the reference's density
+     * and geometric accuracy recovered by edge splits and collapses (sec.
+     * 3.5.1, bodt_set_reference_mesh), then ODT by phases (eq. 3.4, step
+     * BODT_PARAM_ODT_STEP): vertices of sharp-edge chains along their line
+     * or circle, surface vertices on their plane or developed cylinder,
+     * interior vertices in space; then surface flips (as split + collapse)
+     * and Delaunay flips (sec. 3.4.4).  Surface vertices stay on their
+     * fitted shapes; regions fitted by neither shape keep their vertices. */
+    BODT_MODE_PHASED_ODT = 6
 };
 
 BODT_API int bodt_set_mode(bodt_mesh *mesh, int mode);
@@ -392,7 +407,22 @@ enum bodt_param {
     BODT_PARAM_QN_INITIAL_STEP = 16,
     /* double in [1.1, 10], default 2: the factor alpha by which the interval
      * search grows its step (Algorithm 3). */
-    BODT_PARAM_QN_INTERVAL_GROWTH = 17
+    BODT_PARAM_QN_INTERVAL_GROWTH = 17,
+    /* double in (0, 1], default 1: the step alpha of eq. (3.4), paper 002
+     * (BODT_MODE_PHASED_ODT): a vertex moves this fraction of the way to
+     * its ODT target. */
+    BODT_PARAM_ODT_STEP = 18,
+    /* double in (0, 1), default 2/3: gamma of paper 002 sec. 3.5.1.  An
+     * edge whose density 1/|e| is below gamma times the target density is
+     * split (BODT_MODE_PHASED_ODT with a target density). */
+    BODT_PARAM_DENSITY_SPLIT = 19,
+    /* double in (1, 100], default 3/2: delta of sec. 3.5.1.  An edge whose
+     * density exceeds delta times the target is collapsed. */
+    BODT_PARAM_DENSITY_COLLAPSE = 20,
+    /* double in (0, 0.1], default 1e-3: a surface region is a plane (or a
+     * cylinder, a chain a line or circle) when no point of it lies further
+     * from the fitted shape than this fraction of the region's size. */
+    BODT_PARAM_FIT_TOLERANCE = 21
 };
 
 /*
@@ -464,6 +494,108 @@ typedef int (*bodt_step_callback)(const bodt_step_report *report,
  * callback may be NULL. */
 BODT_API int bodt_run(bodt_mesh *mesh, int32_t max_steps,
                       bodt_step_callback callback, void *user_data);
+
+/* ------------------------------------- geometry and reference (paper 002) */
+
+/* What the geometry extraction of paper 002 (sec. 3.3) makes of a vertex. */
+enum bodt_geometry_class {
+    BODT_GEOMETRY_INTERIOR = 0,   /* not on the boundary or an interface  */
+    BODT_GEOMETRY_SURFACE = 1,    /* inside one surface region            */
+    BODT_GEOMETRY_SHARP_EDGE = 2, /* on a chain of sharp edges            */
+    BODT_GEOMETRY_CORNER = 3      /* where a chain ends or chains meet    */
+};
+/* The shape fitted to a surface region or a sharp-edge chain. */
+enum bodt_shape {
+    BODT_SHAPE_NONE = 0,     /* no plane or cylinder fits: its vertices stay */
+    BODT_SHAPE_PLANE = 1,
+    BODT_SHAPE_CYLINDER = 2,
+    BODT_SHAPE_LINE = 3,
+    BODT_SHAPE_ARC = 4,
+    BODT_SHAPE_CIRCLE = 5
+};
+
+/*
+ * The geometry the phased mode works with, extracted from the mesh when
+ * first asked for (with BODT_PARAM_FEATURE_ANGLE and BODT_PARAM_FIT_TOLERANCE)
+ * and then kept, and carried along, by BODT_MODE_PHASED_ODT's steps.
+ * nregions and nchains may be NULL.
+ */
+BODT_API int bodt_mesh_get_geometry_counts(const bodt_mesh *mesh,
+                                           int32_t *nregions,
+                                           int32_t *nchains);
+/* nverts classes (enum bodt_geometry_class). */
+BODT_API int bodt_mesh_get_geometry_classes(const bodt_mesh *mesh,
+                                            int32_t *classes,
+                                            size_t capacity);
+/* Per boundary face, in bodt_mesh_get_boundary_faces order: its surface
+ * region (numbered from the index base) and that region's enum bodt_shape.
+ * Either array may be NULL; capacity counts faces. */
+BODT_API int bodt_mesh_get_face_regions(const bodt_mesh *mesh,
+                                        int32_t *region_ids,
+                                        int32_t *shapes, size_t capacity);
+
+typedef struct bodt_shape_fit {
+    size_t size;       /* set to sizeof(bodt_shape_fit) */
+    int32_t shape;     /* enum bodt_shape */
+    int32_t reserved0;
+    /* Plane: a point and the unit normal.  Cylinder: a point on the axis and
+     * its unit direction.  Line: a point and the unit direction.  Arc,
+     * circle: the centre and the unit normal of its plane. */
+    double point[3];
+    double axis[3];
+    double radius;     /* cylinder, arc, circle */
+    double max_error;  /* largest distance of the region's vertices from it */
+    /* Cylinders: the geometric error BODT_MODE_PHASED_ODT keeps to, the
+     * largest distance of an edge midpoint from the fitted cylinder (sec.
+     * 3.3) in the reference mesh, or without one in this mesh as extracted;
+     * 0 for other shapes. */
+    double acceptable_error;
+} bodt_shape_fit;
+/* The shape fitted to surface region `region` (numbered from the index
+ * base). */
+BODT_API int bodt_mesh_get_region_shape(const bodt_mesh *mesh, int32_t region,
+                                        bodt_shape_fit *fit);
+
+/*
+ * The undeformed mesh the handle's mesh was deformed from: the same
+ * vertices, numbered alike (the tets may differ).  It gives (paper 002 sec.
+ * 3.2, 3.3) the target density field (the reference's vertex densities
+ * interpolated over a grid on this mesh, eq. 3.2) and, per cylindrical
+ * region, the acceptable geometric error; BODT_MODE_PHASED_ODT then splits
+ * and collapses edges to recover both.  NULL clears it.  The reference is
+ * read, not kept: it may be destroyed after the call.
+ */
+BODT_API int bodt_set_reference_mesh(bodt_mesh *mesh,
+                                     const bodt_mesh *reference);
+/*
+ * A target density (1 / edge length) given directly: values at the
+ * dims[0] * dims[1] * dims[2] points of a regular grid, x fastest, point
+ * (i, j, k) at origin + (i, j, k) * spacing; a value <= 0 means none there.
+ * A cell's density is the mean of its corners' positive values (sec. 3.2).
+ * values == NULL clears it.  Replaces a reference mesh's density.
+ */
+BODT_API int bodt_set_target_density(bodt_mesh *mesh, const double origin[3],
+                                     const double spacing[3],
+                                     const int32_t dims[3],
+                                     const double *values);
+
+typedef struct bodt_recovery_error {
+    size_t size;             /* set to sizeof(bodt_recovery_error) */
+    /* Eq. (4.1) of paper 002 over the edges: |1/|e| - rho'| / rho', with
+     * rho' the target density at the edge's midpoint.  0 edges without a
+     * target density. */
+    double density_mean;
+    double density_max;
+    int64_t density_edges;
+    /* Distance of the midpoints of the surface edges of cylindrical regions
+     * from the region's fitted cylinder (sec. 3.3).  0 edges without any. */
+    double geometric_mean;
+    double geometric_max;
+    int64_t geometric_edges;
+} bodt_recovery_error;
+/* How far the mesh is from its target density and its fitted geometry. */
+BODT_API int bodt_mesh_recovery_error(const bodt_mesh *mesh,
+                                      bodt_recovery_error *error);
 
 /* ----------------------------------------------------------------- files */
 

@@ -1219,15 +1219,16 @@ static void test_params(void **state) {
     assert_int_equal(iv, 0);
 
     /* modes */
-    const int modes[] = {BODT_MODE_ODT, BODT_MODE_BODT_BASIC, BODT_MODE_BODT, BODT_MODE_OPT_WEIGHTED, BODT_MODE_LAPLACE};
-    for (int k = 0; k < 5; ++k) {
+    const int modes[] = {BODT_MODE_ODT, BODT_MODE_BODT_BASIC, BODT_MODE_BODT, BODT_MODE_OPT_WEIGHTED,
+                         BODT_MODE_PHASED_ODT, BODT_MODE_LAPLACE};
+    for (int k = 0; k < 6; ++k) {
         assert_int_equal(bodt_set_mode(h, modes[k]), BODT_OK);
         assert_int_equal(bodt_get_mode(h, &mode), BODT_OK);
         assert_int_equal(mode, modes[k]);
     }
     assert_int_equal(bodt_set_mode(h, 0), E);
     assert_contains(bodt_mesh_last_error(h), "mode");
-    assert_int_equal(bodt_set_mode(h, 6), E);
+    assert_int_equal(bodt_set_mode(h, 7), E);
     assert_int_equal(bodt_set_mode(h, -1), E);
     assert_int_equal(bodt_get_mode(h, &mode), BODT_OK);
     assert_int_equal(mode, BODT_MODE_LAPLACE);

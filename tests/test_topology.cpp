@@ -108,7 +108,13 @@ using bodt::Vec3;
 constexpr double kDeg = 180.0 / M_PI;
 
 // The rules of the random test: the surface may change, a low stretch floor.
-TopologyRules loose_rules() { return TopologyRules{true, 1e-6, false}; }
+TopologyRules loose_rules() {
+    TopologyRules rules;
+    rules.surface_may_change = true;
+    rules.min_stretch = 1e-6;
+    rules.never_worse = false;
+    return rules;
+}
 
 // ------------------------------------------------------------------ inputs
 

@@ -1,6 +1,6 @@
 // The C API: thin wrappers that check arguments, call the core, and turn
 // every exception into a status code and a message.  Nothing here throws.
-#include "bodt.h"
+#include "capi/handle.hpp"
 
 #include "common/error.hpp"
 #include "io/mesh_io.hpp"
@@ -11,83 +11,11 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
-#include <new>
 #include <string>
 
-struct bodt_mesh {
-    bodt::TetMesh mesh;
-    bodt::RegionSurfaces surfaces;
-    bodt::Improver improver;
-    int index_base = 0;
-    bool flipped = false;
-    mutable std::string last_error;
-};
+using namespace bodt_capi;
 
 namespace {
-
-using bodt::Error;
-
-// Message of the last failed creation (or call on a NULL handle) on this
-// thread: per-thread, so threads never share it.
-thread_local std::string t_thread_error;
-
-std::string& error_slot(const bodt_mesh* m) { return m ? m->last_error : t_thread_error; }
-
-// Runs `f`, translating exceptions; the message goes to the handle (or to the
-// thread's slot when there is no handle yet).
-template <class F>
-int guarded(const bodt_mesh* m, F&& f) {
-    std::string& slot = error_slot(m);
-    try {
-        f();
-        slot.clear();
-        return BODT_OK;
-    } catch (const Error& e) {
-        slot = e.what();
-        return e.status();
-    } catch (const std::bad_alloc&) {
-        slot = "out of memory";
-        return BODT_ERR_OUT_OF_MEMORY;
-    } catch (const std::exception& e) {
-        slot = std::string("internal error: ") + e.what();
-        return BODT_ERR_NUMERIC;
-    } catch (...) {
-        slot = "internal error";
-        return BODT_ERR_NUMERIC;
-    }
-}
-
-// For functions taking a handle: refuse NULL before anything else.
-template <class F>
-int with_mesh(const bodt_mesh* m, F&& f) {
-    if (!m) {
-        t_thread_error = "mesh is NULL";
-        return BODT_ERR_INVALID_ARGUMENT;
-    }
-    return guarded(m, std::forward<F>(f));
-}
-
-void require(bool ok, const char* message) {
-    if (!ok) throw Error(BODT_ERR_INVALID_ARGUMENT, message);
-}
-
-void require_capacity(size_t capacity, size_t needed, const char* what) {
-    if (capacity < needed)
-        throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(what) + " needs capacity " + std::to_string(needed) +
-                                                   ", got " + std::to_string(capacity));
-}
-
-// Copies `full` into a caller struct of `size` bytes whose first member is
-// that size: the caller gets what fits, the rest is zeroed.
-template <class T>
-void fill_sized(T* out, const T& full) {
-    require(out != nullptr, "output struct is NULL");
-    const size_t size = out->size;
-    require(size >= sizeof(size_t), "set the struct's size field to sizeof(struct) before the call");
-    std::memset(static_cast<void*>(out), 0, size);
-    std::memcpy(static_cast<void*>(out), &full, std::min(size, sizeof(T)));
-    out->size = size;
-}
 
 bodt_mesh* make_handle(const bodt::MeshArrays& arrays) {
     bodt::BuiltMesh built = bodt::build_mesh(arrays);
@@ -124,7 +52,7 @@ void apply_regions(bodt_mesh* h, const int32_t* region_ids) {
     }
     h->surfaces = std::move(surfaces);
     h->mesh.update_vertex_flags();
-    h->improver.invalidate_classes();
+    h->improver.mesh_data_changed();
 }
 
 // True when some boundary or interface face has the edge (a, b).
@@ -160,7 +88,7 @@ void apply_feature_edges(bodt_mesh* h, int32_t nedges, const int32_t* edges) {
         fresh.insert(bodt::edge_key(v[0], v[1]));
     }
     h->mesh.feature_edges = std::move(fresh);
-    h->improver.invalidate_classes();
+    h->improver.mesh_data_changed();
 }
 
 std::vector<bodt::EdgeKey> sorted_feature_edges(const bodt::TetMesh& mesh) {
@@ -195,7 +123,7 @@ void apply_face_markers(bodt_mesh* h, int32_t nfaces, const int32_t* triangles, 
     }
     h->mesh.face_markers = std::move(fresh);
     h->mesh.update_vertex_flags();
-    h->improver.invalidate_classes();
+    h->improver.mesh_data_changed();
 }
 
 void apply_fixed(bodt_mesh* h, int32_t nfixed, const int32_t* vertices) {
@@ -206,7 +134,7 @@ void apply_fixed(bodt_mesh* h, int32_t nfixed, const int32_t* vertices) {
         bodt::check_vertex_index(vertices[k], mesh.num_vertices(), h->index_base, "fixed vertex", k);
     for (uint8_t& f : mesh.vflags) f &= static_cast<uint8_t>(~bodt::kFixed);
     for (int32_t k = 0; k < nfixed; ++k) mesh.vflags[vertices[k] - h->index_base] |= bodt::kFixed;
-    h->improver.invalidate_classes();
+    h->improver.mesh_data_changed();
 }
 
 void fill_step_report(const bodt::StepReport& r, bodt_step_report* out) {

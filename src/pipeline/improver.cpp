@@ -31,10 +31,10 @@ void count_outcome(MoveOutcome outcome, double distance, StepReport& report) {
 
 void Improver::set_mode(int mode) {
     if (mode != BODT_MODE_LAPLACE && mode != BODT_MODE_ODT && mode != BODT_MODE_BODT_BASIC && mode != BODT_MODE_BODT &&
-        mode != BODT_MODE_OPT_WEIGHTED)
+        mode != BODT_MODE_OPT_WEIGHTED && mode != BODT_MODE_PHASED_ODT)
         throw Error(BODT_ERR_INVALID_ARGUMENT, "unknown mode " + std::to_string(mode));
     mode_ = mode;
-    invalidate_classes();
+    classes_valid_ = false;
 }
 
 void Improver::set_param_int(int key, int32_t value) {
@@ -43,10 +43,15 @@ void Improver::set_param_int(int key, int32_t value) {
 
 void Improver::set_param_double(int key, double value) {
     bodt::set_param_double(params_, key, value);
-    invalidate_classes();
+    classes_valid_ = false;
+    if (key == BODT_PARAM_FEATURE_ANGLE || key == BODT_PARAM_FIT_TOLERANCE) geometry_valid_ = false;
 }
 
 const VertexClasses& Improver::classes(const TetMesh& mesh, const RegionSurfaces& surfaces) const {
+    if (!classes_valid_ && mode_ == BODT_MODE_PHASED_ODT) {
+        classes_ = geometry(mesh).vertex_classes();
+        classes_valid_ = true;
+    }
     if (!classes_valid_) {
         FeatureSettings settings;
         settings.feature_angle_deg = params_.feature_angle;
@@ -124,6 +129,7 @@ int32_t Improver::ops() const {
     if (params_.ops >= 0) return params_.ops;
     if (mode_ == BODT_MODE_BODT) return BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT;
     if (mode_ == BODT_MODE_OPT_WEIGHTED) return BODT_OP_SMOOTH | BODT_OP_FLIP;
+    if (mode_ == BODT_MODE_PHASED_ODT) return BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT | BODT_OP_COLLAPSE;
     return BODT_OP_SMOOTH;
 }
 
@@ -180,7 +186,7 @@ void Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     RegionSurfaces rebuilt;
     rebuilt.build(mesh, 0, BoundarySurface::Strictness::Tolerant);
     surfaces = std::move(rebuilt);
-    invalidate_classes();
+    mesh_data_changed();
     report.flips = counts.flips;
     report.vertices_inserted = counts.inserted;
     report.edges_collapsed = counts.collapsed;
@@ -192,25 +198,32 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
     const std::vector<Vec3> saved_points = topology ? std::vector<Vec3>() : mesh.points;
     TetMesh saved_mesh;
     RegionSurfaces saved_surfaces;
+    GeometryModel saved_geometry;
+    const bool saved_geometry_valid = geometry_valid_;
     if (topology) {
         saved_mesh = mesh;
         saved_surfaces = surfaces;
+        saved_geometry = geometry_;
     }
     StepReport report;
     try {
-        if (ops() & BODT_OP_SMOOTH) {
+        if (mode_ == BODT_MODE_PHASED_ODT) {
+            step_phased(mesh, surfaces, report);
+        } else if (ops() & BODT_OP_SMOOTH) {
             if (mode_ == BODT_MODE_LAPLACE) sweep_laplace(mesh, report);
             else if (mode_ == BODT_MODE_OPT_WEIGHTED) sweep_opt_weighted(mesh, surfaces, report);
             else sweep_bodt(mesh, surfaces, report);
         }
-        change_topology(mesh, surfaces, report);
+        if (mode_ != BODT_MODE_PHASED_ODT) change_topology(mesh, surfaces, report);
         for (const Vec3& p : mesh.points)
             if (!p.allFinite()) throw Error(BODT_ERR_NUMERIC, "a vertex position became non-finite");
     } catch (...) {
         if (topology) {
             mesh = std::move(saved_mesh);
             surfaces = std::move(saved_surfaces);
-            invalidate_classes();
+            geometry_ = std::move(saved_geometry);
+            geometry_valid_ = saved_geometry_valid;
+            classes_valid_ = false;
         } else {
             mesh.points = saved_points;
         }

@@ -4,13 +4,17 @@
 // where tets are still bad (paper 000 Fig. 1), or, in
 // BODT_MODE_OPT_WEIGHTED, one round of paper 001's combined algorithm
 // (sec. 2): quasi-Newton on the vertices of poor tets, then swaps of the
-// poor tets whose vertices all stay put.
+// poor tets whose vertices all stay put; in BODT_MODE_PHASED_ODT, one round
+// of paper 002 (Fig. 3): removal of inverted and degenerate tets, recovery
+// of density and geometry, ODT by phases, flips.
 #pragma once
 
 #include "bodt.h"
+#include "features/geometry_model.hpp"
 #include "features/vertex_classes.hpp"
 #include "mesh/region_surfaces.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "pipeline/density_field.hpp"
 #include "pipeline/params.hpp"
 #include "smoothing/quasi_newton.hpp"
 
@@ -40,8 +44,23 @@ public:
     // The classes are computed when first needed and kept until the mesh's
     // regions, markers, fixed vertices or feature edges change (the caller
     // says so here) or the mode or a feature parameter does.
-    void invalidate_classes() { classes_valid_ = false; }
+    void mesh_data_changed() {
+        classes_valid_ = false;
+        geometry_valid_ = false;
+    }
     const VertexClasses& classes(const TetMesh& mesh, const RegionSurfaces& surfaces) const;
+
+    // Paper 002's geometry (sec. 3.3): extracted from the mesh when first
+    // needed, then carried through BODT_MODE_PHASED_ODT's steps; extracted
+    // again after the mesh data, a feature parameter or another mode's
+    // connectivity change.
+    const GeometryModel& geometry(const TetMesh& mesh) const;
+    // The undeformed mesh (same input vertices): the target density field
+    // and the acceptable geometric errors (sec. 3.2, 3.3).
+    void set_reference(const TetMesh& reference, const TetMesh& mesh);
+    void set_target_density(DensityGrid grid) { density_ = std::move(grid); }
+    void clear_reference();
+    const DensityGrid& target_density() const { return density_; }
 
     // The bodt_op bits a step does: the parameter, or the mode's default.
     int32_t ops() const;
@@ -57,12 +76,20 @@ private:
     void sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const;
     QuasiNewtonSettings quasi_newton_settings() const;
     void change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
+    void step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
+    void sweep_phased(TetMesh& mesh, StepReport& report);
+    void apply_reference_errors() const;
 
     int mode_ = BODT_MODE_BODT;
     Params params_;
     int32_t steps_done_ = 0;
     mutable VertexClasses classes_;  // a cache: computing it changes no result
     mutable bool classes_valid_ = false;
+    mutable GeometryModel geometry_;  // carried state in the phased mode, a cache otherwise
+    mutable bool geometry_valid_ = false;
+    DensityGrid density_;                  // the target density; empty: none
+    std::vector<double> vertex_acceptable_;  // per input vertex: its reference region's acceptable error
+    std::vector<Vec3> reference_points_;     // per input vertex: where the reference has it
 };
 
 }  // namespace bodt

@@ -17,7 +17,8 @@ struct Info {
     int key;
     const char* name;
     Type type;
-    double lo, hi;  // valid range, inclusive
+    double lo, hi;  // valid range
+    bool lo_open = false, hi_open = false;  // the range excludes lo / hi
 };
 
 constexpr Info kParams[] = {
@@ -38,6 +39,10 @@ constexpr Info kParams[] = {
     {BODT_PARAM_QN_MAX_ITERATIONS, "BODT_PARAM_QN_MAX_ITERATIONS", Type::Int, 1, 1000},
     {BODT_PARAM_QN_INITIAL_STEP, "BODT_PARAM_QN_INITIAL_STEP", Type::Double, 1e-6, 10.0},
     {BODT_PARAM_QN_INTERVAL_GROWTH, "BODT_PARAM_QN_INTERVAL_GROWTH", Type::Double, 1.1, 10.0},
+    {BODT_PARAM_ODT_STEP, "BODT_PARAM_ODT_STEP", Type::Double, 0.0, 1.0, true, false},
+    {BODT_PARAM_DENSITY_SPLIT, "BODT_PARAM_DENSITY_SPLIT", Type::Double, 0.0, 1.0, true, true},
+    {BODT_PARAM_DENSITY_COLLAPSE, "BODT_PARAM_DENSITY_COLLAPSE", Type::Double, 1.0, 100.0, true, false},
+    {BODT_PARAM_FIT_TOLERANCE, "BODT_PARAM_FIT_TOLERANCE", Type::Double, 0.0, 0.1, true, false},
 };
 
 const Info& lookup(int key, Type want) {
@@ -60,9 +65,12 @@ std::string show(const Info& info, double value) {
 }
 
 void check_range(const Info& info, double value) {
-    if (!(value >= info.lo && value <= info.hi))
-        throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(info.name) + " must be in [" + show(info, info.lo) + ", " +
-                                                   show(info, info.hi) + "], got " + show(info, value));
+    const bool above = info.lo_open ? value > info.lo : value >= info.lo;
+    const bool below = info.hi_open ? value < info.hi : value <= info.hi;
+    if (!(above && below))
+        throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(info.name) + " must be in " + (info.lo_open ? "(" : "[") +
+                                                   show(info, info.lo) + ", " + show(info, info.hi) +
+                                                   (info.hi_open ? ")" : "]") + ", got " + show(info, value));
 }
 
 // The member behind an int key (already looked up).
@@ -90,6 +98,10 @@ double& double_field(Params& p, int key) {
         case BODT_PARAM_QN_EPSILON: return p.qn_epsilon;
         case BODT_PARAM_QN_INITIAL_STEP: return p.qn_initial_step;
         case BODT_PARAM_QN_INTERVAL_GROWTH: return p.qn_growth;
+        case BODT_PARAM_ODT_STEP: return p.odt_step;
+        case BODT_PARAM_DENSITY_SPLIT: return p.density_split;
+        case BODT_PARAM_DENSITY_COLLAPSE: return p.density_collapse;
+        case BODT_PARAM_FIT_TOLERANCE: return p.fit_tolerance;
         default: return p.corner_ratio;
     }
 }

@@ -23,6 +23,10 @@ struct Params {
     int32_t qn_max_iterations = 10;   // BODT_PARAM_QN_MAX_ITERATIONS
     double qn_initial_step = 0.05; // BODT_PARAM_QN_INITIAL_STEP
     double qn_growth = 2.0;        // BODT_PARAM_QN_INTERVAL_GROWTH
+    double odt_step = 1.0;         // BODT_PARAM_ODT_STEP (alpha, paper 002 eq. 3.4)
+    double density_split = 2.0 / 3.0;   // BODT_PARAM_DENSITY_SPLIT (gamma, sec. 3.5.1)
+    double density_collapse = 1.5;      // BODT_PARAM_DENSITY_COLLAPSE (delta)
+    double fit_tolerance = 1e-3;   // BODT_PARAM_FIT_TOLERANCE
 };
 
 // Each throws Error(BODT_ERR_INVALID_ARGUMENT) for an unknown key, a key of

@@ -42,7 +42,9 @@ bool link_condition(const EditableMesh& mesh, int32_t v, int32_t w) {
 
 // Where v may go along its feature edges: to w, over a feature edge, with
 // the line straight at v so that it keeps its shape.
-bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double length) {
+// On a curved feature line (rules.on_curved_shape) v may go to w when w
+// lies on the line's fitted shape.
+bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double length, const TopologyRules& rules) {
     std::vector<int32_t> around;
     mesh.neighbors(v, around);
     std::vector<int32_t> along;
@@ -50,6 +52,7 @@ bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double 
         if (mesh.is_feature_edge(v, x)) along.push_back(x);
     if (along.empty()) return mesh.vertex_class(v) != VertexClass::FeatureLine;
     if (along.size() != 2 || !mesh.is_feature_edge(v, w)) return false;
+    if (rules.on_curved_shape && rules.on_curved_shape(mesh, {v, w}, mesh.point(w))) return true;
     const int32_t u = along[0] == w ? along[1] : along[0];
     const Vec3 d = mesh.point(w) - mesh.point(u);
     const Vec3 off = (mesh.point(v) - mesh.point(u)).cross(d);
@@ -66,7 +69,7 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
     const bool v_on_surface = cv != VertexClass::Interior;
     if (v_on_surface && (!rules.surface_may_change || !mesh.is_surface_edge(v, w))) return false;
     const double length = (mesh.point(w) - mesh.point(v)).norm();
-    if (!feature_lines_allow(mesh, v, w, length)) return false;
+    if (!feature_lines_allow(mesh, v, w, length, rules)) return false;
     if (!link_condition(mesh, v, w)) return false;
 
     // The surface faces at v: w must lie in each one's plane, the renamed
@@ -102,7 +105,8 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
                     continue;
                 }
                 const Vec3 n = triangle_normal(mesh.point(a), mesh.point(b), mesh.point(c));
-                if (!in_plane(n, mesh.point(v), mesh.point(w), length)) return false;
+                const bool on_shape = rules.on_curved_shape && rules.on_curved_shape(mesh, {a, b, c}, mesh.point(w));
+                if (!on_shape && !in_plane(n, mesh.point(v), mesh.point(w), length)) return false;
                 const Vec3 pa = a == v ? mesh.point(w) : mesh.point(a), pb = b == v ? mesh.point(w) : mesh.point(b),
                            pc = c == v ? mesh.point(w) : mesh.point(c);
                 if (!(triangle_normal(pa, pb, pc).dot(n) > 0.0)) return false;
@@ -189,7 +193,7 @@ int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRu
             ok = in_plane(n, old_b, mid, length);
         }
     }
-    if (ok && rank(b) > 0) ok = rules.surface_may_change && feature_lines_allow(mesh, b, a, length);
+    if (ok && rank(b) > 0) ok = rules.surface_may_change && feature_lines_allow(mesh, b, a, length, rules);
     if (ok && collapse_half_edge(mesh, a, b, rules, must_exceed)) return b;
     mesh.rollback(mark);
     return -1;

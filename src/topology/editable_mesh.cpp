@@ -48,7 +48,7 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
         for (int32_t v : tets_[t]) vtets_[v].push_back(t);
 }
 
-void EditableMesh::write_to(TetMesh& mesh) const {
+std::vector<int32_t> EditableMesh::write_to(TetMesh& mesh) const {
     // Vertex numbering: input vertices stay; made ones that are still used
     // follow in the order they were made.
     std::vector<int32_t> renumber(points_.size(), -1);
@@ -83,6 +83,7 @@ void EditableMesh::write_to(TetMesh& mesh) const {
     for (EdgeKey k : caller_features_)
         mesh.feature_edges.insert(edge_key(renumber[edge_first(k)], renumber[edge_second(k)]));
     mesh.reversed.clear();
+    return renumber;
 }
 
 TetPoints EditableMesh::tet_points(int32_t t) const {

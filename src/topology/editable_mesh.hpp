@@ -33,8 +33,9 @@ public:
     // Writes the result back: tets compacted in order, vertices of the
     // input kept at their index (unused if an operation removed them),
     // vertices made since the input appended, those no tet uses dropped.
-    // The caller rebuilds the mesh's topology afterwards.
-    void write_to(TetMesh& mesh) const;
+    // The caller rebuilds the mesh's topology afterwards.  Returns each
+    // vertex's index in `mesh` (-1: dropped).
+    std::vector<int32_t> write_to(TetMesh& mesh) const;
 
     // ---- queries
     int32_t num_vertices() const { return static_cast<int32_t>(points_.size()); }
@@ -47,6 +48,7 @@ public:
     const std::vector<int32_t>& tets_of(int32_t v) const { return vtets_[v]; }
     VertexClass vertex_class(int32_t v) const { return cls_[v]; }
     bool is_feature_edge(int32_t a, int32_t b) const { return features_.count(edge_key(a, b)) != 0; }
+    const EdgeSet& feature_edges() const { return features_; }
     const Parents& parents(int32_t v) const { return parents_[v]; }
     TetPoints tet_points(int32_t t) const;
 

@@ -13,6 +13,8 @@
 #include "topology/editable_mesh.hpp"
 
 #include <cstdint>
+#include <functional>
+#include <initializer_list>
 
 namespace bodt {
 
@@ -24,6 +26,15 @@ struct TopologyRules {
     // they replace is not Delaunay and every tet they make is (both with
     // respect to the vertices of the tets involved).
     bool delaunay = false;
+    // Untangling (paper 002 sec. 3.5.3): a new tet may be inverted, as long
+    // as its stretch is no worse than the worst tet it replaces.
+    bool allow_inverted = false;
+    // Curved surfaces and feature lines (paper 002's fitted cylinders and
+    // arcs): true when x lies on the fitted shape under `element` (a surface
+    // face's three vertices or a feature edge's two), which then stands in
+    // for "x lies in the face's plane" or "the line is straight".  Empty:
+    // the surface is flat between feature edges.
+    std::function<bool(const EditableMesh& mesh, std::initializer_list<int32_t> element, const Vec3& x)> on_curved_shape;
 };
 
 // The largest number of tets around an edge that edge removal considers.

@@ -4,7 +4,7 @@
     test_cli.py --bodt PATH --data DIR --out DIR CASE
 
 CASE is one of quality_json, improve, improve_ops, exit_codes,
-improve_opt_weighted, improve_surface (with TetGen), surface_without_tetgen
+improve_opt_weighted, improve_phased, improve_surface (with TetGen), surface_without_tetgen
 (without).  Every value checked comes from
 running the command; expected mesh quality is recomputed here from the mesh
 file with plain Python (no library code).  Exits 0 on success, 1 on the
@@ -475,6 +475,53 @@ def case_improve_opt_weighted(args):
     check(code == 0 and "opt-weighted" in out, "--help does not document opt-weighted")
 
 
+def case_improve_phased(args):
+    """--mode phased --reference (paper 002) on a jittered 4 x 4 x 4 box whose
+    side x = 2 was moved to x = 1.2 without moving the inside, so that tets
+    invert: the result has none, fills the new box, and its density error
+    went down; --reference without --mode phased is a usage error."""
+    src = os.path.join(args.out, "box4_ph_original.mesh")
+    write_jittered_box(src, 4, 2.0, 0.3, 11)
+    pts, tets = read_medit(src)
+    moved = [(1.2 if p[0] == 2.0 else p[0], p[1], p[2]) for p in pts]
+    deformed = os.path.join(args.out, "box4_ph_deformed.mesh")
+    with open(deformed, "w") as f:
+        f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % len(moved))
+        for p in moved:
+            f.write("%.17g %.17g %.17g 0\n" % p)
+        f.write("Tetrahedra\n%d\n" % len(tets))
+        for t in tets:
+            f.write("%d %d %d %d 1\n" % tuple(v + 1 for v in t))
+        f.write("End\n")
+    inverted = sum(1 for t in tets if dot(sub(moved[t[1]], moved[t[0]]),
+                                          cross(sub(moved[t[2]], moved[t[0]]), sub(moved[t[3]], moved[t[0]]))) <= 0)
+    check(inverted > 0, "the deformation inverted no tet")
+    dst = os.path.join(args.out, "box4_ph_out.mesh")
+    if os.path.exists(dst):
+        os.remove(dst)
+    code, summary, out, err = improve_summary(args, deformed, dst, "--mode", "phased", "--reference", src)
+    check(code == 0, "--mode phased exited %d: %s" % (code, err))
+    check(os.path.exists(dst), "%s was not written" % dst)
+    if code != 0 or not os.path.exists(dst):
+        return
+    q = quality_of(dst)
+    left = sum(1 for s in q["stretches"] if s <= 0.0)
+    check(left == 0, "%d tets inverted or flat after the run (min stretch %r)" % (left, q["stretch_min"]))
+    check(abs(q["volume"] - 1.2 * 4.0) <= 1e-9 * 4.8, "volume %r, want 4.8 (the deformed box)" % q["volume"])
+    p1, t1 = read_medit(dst)
+    used = {v for t in t1 for v in t}
+    outside = [v for v in used if not all(-1e-12 <= c <= hi + 1e-12 for c, hi in zip(p1[v], (1.2, 2.0, 2.0)))]
+    check(not outside, "vertices outside the deformed box: %r" % outside[:5])
+    m = re.search(r"density err mean\s+(\S+)\s+(\S+)", out)
+    check(m is not None, "no density error row in %r" % out)
+    if m:
+        check(float(m.group(2)) < float(m.group(1)), "density error did not go down: %s -> %s" % m.groups())
+    code, _, err = run(args.bodt, "improve", deformed, dst, "--mode", "odt", "--reference", src)
+    check(code == 1 and "--reference" in err, "--reference with --mode odt: exit %d, %r" % (code, err))
+    print("phased: %d of %d tets inverted -> %d; summary %r; %s" % (inverted, len(tets), left, summary,
+                                                                    m.group(0) if m else "no density row"))
+
+
 def case_exit_codes(args):
     os.makedirs(args.out, exist_ok=True)
     good = os.path.join(args.data, "box2.mesh")
@@ -578,7 +625,7 @@ def main():
     ap.add_argument("--data", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("case", choices=["quality_json", "improve", "improve_ops", "exit_codes", "improve_surface",
-                                     "surface_without_tetgen", "improve_opt_weighted"])
+                                     "surface_without_tetgen", "improve_opt_weighted", "improve_phased"])
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     globals()["case_" + args.case](args)

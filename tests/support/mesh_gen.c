@@ -264,3 +264,106 @@ int tm_map_cube_to_ball(test_mesh *m) {
     }
     return all_positive(m) ? 0 : -2;
 }
+
+/* ---------------------------------------------------- box with a hole */
+
+/* Direction j of tm_make_box_with_hole: the unit vector d_j on ring 0 and
+ * the point s_j of the square of half width 1 on the same ray.  Computed for
+ * the side x = +1 and turned by exact quarter turns (x, y) -> (-y, x), so
+ * zeros stay zeros and the square's corners are exactly +-1. */
+static void hole_direction(int j, int nt, double d[2], double s[2]) {
+    const int per_side = nt / 4;
+    const int q = j / per_side, m = j % per_side;
+    const double pi = 3.14159265358979323846;
+    const double psi = -0.25 * pi + 0.5 * pi * (double)m / per_side;
+    d[0] = cos(psi);
+    d[1] = sin(psi);
+    s[0] = 1.0;
+    s[1] = m == 0 ? -1.0 : d[1] / d[0]; /* tan(-pi/4) = -1 exactly */
+    for (int turn = 0; turn < q; ++turn) {
+        double x = d[0];
+        d[0] = -d[1];
+        d[1] = x;
+        x = s[0];
+        s[0] = -s[1];
+        s[1] = x;
+    }
+}
+
+/* (x, y) of vertex (ring i, angle j) of the undeformed mesh. */
+static void hole_point(int i, int j, int nr, int nt, double half_width, double radius, double p[2]) {
+    double d[2], s[2];
+    hole_direction(j, nt, d, s);
+    const double t = (double)i / nr;
+    for (int a = 0; a < 2; ++a) {
+        const double inner = radius * d[a], outer = half_width * s[a];
+        p[a] = i == 0 ? inner : i == nr ? outer : (1.0 - t) * inner + t * outer;
+    }
+}
+
+static int hole_args_ok(int nr, int nt, int nz, double half_width, double radius) {
+    return nr >= 1 && nz >= 1 && nt >= 4 && nt % 4 == 0 && radius > 0.0 && half_width > radius &&
+           (double)nt * (nr + 1) * (nz + 1) < 2e9 && 6.0 * nr * nt * nz < 2e9;
+}
+
+int tm_make_box_with_hole(test_mesh *m, int nr, int nt, int nz, double half_width, double radius, double height) {
+    memset(m, 0, sizeof *m);
+    if (!hole_args_ok(nr, nt, nz, half_width, radius) || !(height > 0.0)) return -1;
+    const int rings = nr + 1;
+    m->nverts = (int32_t)nt * rings * (nz + 1);
+    m->ntets = (int32_t)6 * nr * nt * nz;
+    m->xyz = malloc((size_t)m->nverts * 3 * sizeof(double));
+    m->tets = malloc((size_t)m->ntets * 4 * sizeof(int32_t));
+    m->boundary = malloc((size_t)m->nverts);
+    if (!m->xyz || !m->tets || !m->boundary) {
+        tm_free(m);
+        return -1;
+    }
+    for (int k = 0; k <= nz; ++k)
+        for (int i = 0; i <= nr; ++i)
+            for (int j = 0; j < nt; ++j) {
+                const size_t v = ((size_t)k * rings + i) * nt + j;
+                double p[2];
+                hole_point(i, j, nr, nt, half_width, radius, p);
+                m->xyz[3 * v] = p[0];
+                m->xyz[3 * v + 1] = p[1];
+                m->xyz[3 * v + 2] = k == nz ? height : height * k / nz;
+                m->boundary[v] = (unsigned char)(i == 0 || i == nr || k == 0 || k == nz);
+            }
+    size_t t = 0;
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < nt; ++j)
+            for (int i = 0; i < nr; ++i)
+                for (int s = 0; s < 6; ++s) {
+                    for (int c = 0; c < 4; ++c) {
+                        const int corner = kKuhn[s][c];
+                        const int ci = i + (corner & 1), cj = (j + (corner >> 1 & 1)) % nt, ck = k + (corner >> 2 & 1);
+                        m->tets[4 * t + c] = (int32_t)(((size_t)ck * rings + ci) * nt + cj);
+                    }
+                    ++t;
+                }
+    if (!all_positive(m)) {
+        tm_free(m);
+        return -2;
+    }
+    return 0;
+}
+
+void tm_deform_box_with_hole(test_mesh *m, int nr, int nt, int nz, double stretch_x, double new_radius,
+                             double half_width, double radius) {
+    if (!hole_args_ok(nr, nt, nz, half_width, radius) || m->nverts != (int32_t)nt * (nr + 1) * (nz + 1)) return;
+    for (int32_t v = 0; v < m->nverts; ++v) {
+        const int j = v % nt, i = v / nt % (nr + 1);
+        double p[2];
+        hole_point(i, j, nr, nt, half_width, radius, p);
+        if (p[0] > 0.0) p[0] *= stretch_x; /* (a) */
+        if (i == 0) {                      /* (b) */
+            double d[2], s[2];
+            hole_direction(j, nt, d, s);
+            p[0] = new_radius * d[0];
+            p[1] = new_radius * d[1];
+        }
+        m->xyz[3 * v] = p[0];
+        m->xyz[3 * v + 1] = p[1];
+    }
+}

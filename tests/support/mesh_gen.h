@@ -112,4 +112,74 @@ int tm_map_cube_to_ball(test_mesh *m);
 }
 #endif
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/*
+ * A box with a round hole, as a structured O-grid: the box
+ * [-half_width, half_width]^2 x [0, height] minus the cylinder of radius
+ * `radius` (0 < radius < half_width) around the z axis.
+ *
+ * In each of the nz + 1 layers (z = height * k / nz) there are nt points
+ * around (nt >= 4 and divisible by 4) on each of nr + 1 rings.  Point j lies
+ * on the ray from the axis in the direction d_j: the square's side q = j /
+ * (nt / 4) (0: x = +half_width, 1: y = +half_width, 2: x = -half_width,
+ * 3: y = -half_width), at the angle psi = -pi/4 + (pi/2) (j % (nt/4)) / (nt/4)
+ * from that side's outward normal.  So angle j = 0 points at the corner
+ * (+hw, -hw), the four corners of the square are points j = 0, nt/4, nt/2,
+ * 3nt/4 (exactly, +-half_width), and the angle increases counterclockwise
+ * (theta_j = -pi/4 + 2 pi j / nt).  Ring 0 is on the circle,
+ * radius * (cos theta_j, sin theta_j) (cos and sin of psi, turned by exact
+ * quarter turns: coordinates that should be 0 are 0), ring nr on the square
+ * (the ray's point with max(|x|, |y|) = half_width), ring i the linear blend
+ * (1 - i/nr) * ring 0 + (i/nr) * ring nr.
+ *
+ * Vertex (ring i, angle j, layer k) has index (k * (nr + 1) + i) * nt + j.
+ * Cell (i, j, k) spans rings i..i+1, angles j..j+1 (mod nt, across the seam
+ * from j = nt - 1 to 0) and layers k..k+1; its corner bit mask is ring = 1,
+ * angle = 2, layer = 4 (a right-handed frame: radial, counterclockwise, up)
+ * and it is cut into the six Kuhn tets of tm_make_cubes around its diagonal
+ * from corner 0 to corner 7, every tet positively oriented.  Cells are
+ * listed in k, j, i order (i fastest), six tets each.  The split of every
+ * cell face depends only on its own corners, so neighbouring cells (also
+ * across the seam) agree: each interior face is shared by two tets with
+ * opposite orientations.  The hole is the inscribed nt-gon of the circle,
+ * the outside exactly the square.  boundary[v] is 1 on rings 0 and nr and
+ * on layers 0 and nz.
+ * Returns 0; -1 when out of memory or an argument is out of range; -2 when
+ * a tet came out with non-positive volume (nothing is allocated then).
+ */
+int tm_make_box_with_hole(test_mesh *m, int nr, int nt, int nz, double half_width, double radius, double height);
+
+/*
+ * A "dimension-driven deformation" of a mesh from tm_make_box_with_hole
+ * (same nr, nt, nz, half_width, radius), without any smoothing, in place:
+ * the vertex numbering and the tets do not change (the result and the
+ * undeformed mesh can be reference and deformed mesh of each other).
+ * The (x, y) of every vertex is first recomputed from its place in the grid
+ * (so earlier changes to m->xyz do not matter and a second call gives the
+ * same result); z is kept.  Then, in this order:
+ *   (a) every vertex with x > 0 gets x *= stretch_x: the box's side
+ *       x = +half_width moves to stretch_x * half_width, the sides
+ *       y = +-half_width stay planar (they stretch along x);
+ *   (b) the ring-0 vertices alone are put on the circle of radius
+ *       new_radius around the original axis (0, 0), in their original
+ *       directions: new_radius * (cos theta_j, sin theta_j).  This replaces
+ *       what (a) did to them, so the hole stays an exact circular cylinder
+ *       (centred where it was) while the box is stretched.
+ * All other vertices stay where (a) left them, so where new_radius reaches
+ * beyond ring 1 (at radius + (half_width / cos psi - radius) / nr from the
+ * axis before (a)) the tets between rings 0 and 1 invert.  The deformed mesh
+ * bounds, with signed volumes, ((1 + stretch_x) * 2 * half_width^2 -
+ * nt/2 new_radius^2 sin(2 pi / nt)) * height.  Nothing happens when m does
+ * not have the vertex count of such a mesh.
+ */
+void tm_deform_box_with_hole(test_mesh *m, int nr, int nt, int nz, double stretch_x, double new_radius,
+                             double half_width, double radius);
+
+#ifdef __cplusplus
+}
+#endif
+
 #endif /* BODT_TEST_MESH_GEN_H */

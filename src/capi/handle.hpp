@@ -1,0 +1,93 @@
+// What every C API file shares: the handle behind the opaque bodt_mesh,
+// and the wrappers that check arguments and turn every exception into a
+// status code and a message.
+#pragma once
+
+#include "bodt.h"
+
+#include "common/error.hpp"
+#include "mesh/region_surfaces.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "pipeline/improver.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <new>
+#include <string>
+
+struct bodt_mesh {
+    bodt::TetMesh mesh;
+    bodt::RegionSurfaces surfaces;
+    bodt::Improver improver;
+    int index_base = 0;
+    bool flipped = false;
+    mutable std::string last_error;
+};
+
+namespace bodt_capi {
+
+using bodt::Error;
+
+// Message of the last failed creation (or call on a NULL handle) on this
+// thread: per-thread, so threads never share it.
+inline thread_local std::string t_thread_error;
+
+inline std::string& error_slot(const bodt_mesh* m) { return m ? m->last_error : t_thread_error; }
+
+// Runs `f`, translating exceptions; the message goes to the handle (or to the
+// thread's slot when there is no handle yet).
+template <class F>
+int guarded(const bodt_mesh* m, F&& f) {
+    std::string& slot = error_slot(m);
+    try {
+        f();
+        slot.clear();
+        return BODT_OK;
+    } catch (const Error& e) {
+        slot = e.what();
+        return e.status();
+    } catch (const std::bad_alloc&) {
+        slot = "out of memory";
+        return BODT_ERR_OUT_OF_MEMORY;
+    } catch (const std::exception& e) {
+        slot = std::string("internal error: ") + e.what();
+        return BODT_ERR_NUMERIC;
+    } catch (...) {
+        slot = "internal error";
+        return BODT_ERR_NUMERIC;
+    }
+}
+
+// For functions taking a handle: refuse NULL before anything else.
+template <class F>
+int with_mesh(const bodt_mesh* m, F&& f) {
+    if (!m) {
+        t_thread_error = "mesh is NULL";
+        return BODT_ERR_INVALID_ARGUMENT;
+    }
+    return guarded(m, std::forward<F>(f));
+}
+
+inline void require(bool ok, const char* message) {
+    if (!ok) throw Error(BODT_ERR_INVALID_ARGUMENT, message);
+}
+
+inline void require_capacity(size_t capacity, size_t needed, const char* what) {
+    if (capacity < needed)
+        throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(what) + " needs capacity " + std::to_string(needed) +
+                                                   ", got " + std::to_string(capacity));
+}
+
+// Copies `full` into a caller struct of `size` bytes whose first member is
+// that size: the caller gets what fits, the rest is zeroed.
+template <class T>
+void fill_sized(T* out, const T& full) {
+    require(out != nullptr, "output struct is NULL");
+    const size_t size = out->size;
+    require(size >= sizeof(size_t), "set the struct's size field to sizeof(struct) before the call");
+    std::memset(static_cast<void*>(out), 0, size);
+    std::memcpy(static_cast<void*>(out), &full, std::min(size, sizeof(T)));
+    out->size = size;
+}
+
+}  // namespace bodt_capi

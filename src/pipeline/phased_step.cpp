@@ -1,0 +1,209 @@
+// BODT_MODE_PHASED_ODT's side of the Improver (paper 002, Fig. 3): the
+// geometry it keeps, the reference it recovers, and its step.
+#include "common/error.hpp"
+#include "pipeline/improver.hpp"
+#include "smoothing/move_guard.hpp"
+#include "smoothing/phased_odt.hpp"
+#include "topology/phased_topology.hpp"
+#include "topology/topology_pass.hpp"
+
+#include <algorithm>
+#include <string>
+
+namespace bodt {
+
+namespace {
+
+// The mean edge length over the tets' edges (each edge once per tet that
+// holds it: a cell size, not a statistic).
+double mean_edge_length(const TetMesh& mesh) {
+    double sum = 0.0;
+    int64_t n = 0;
+    for (const Tet& q : mesh.tets)
+        for (const auto& e : kEdgeVertex) {
+            sum += (mesh.points[q[e[0]]] - mesh.points[q[e[1]]]).norm();
+            ++n;
+        }
+    return n ? sum / static_cast<double>(n) : 0.0;
+}
+
+// Rebuilds a mesh's topology and surfaces after an EditableMesh wrote
+// itself back, and the geometry after it.
+void write_back(EditableMesh& editable, TetMesh& mesh, RegionSurfaces& surfaces, GeometryModel& geometry) {
+    const std::vector<int32_t> renumber = editable.write_to(mesh);
+    mesh.build_topology(0);
+    RegionSurfaces rebuilt;
+    rebuilt.build(mesh, 0, BoundarySurface::Strictness::Tolerant);
+    surfaces = std::move(rebuilt);
+    geometry.follow(editable, renumber, mesh);
+}
+
+// The EditableMesh of a phased step: inverted tets in the order of their
+// neighbours (negative volume), so that untangling sees them as they are.
+TetMesh consistently_ordered(const TetMesh& mesh) {
+    TetMesh copy = mesh;
+    for (size_t t = 0; t < copy.reversed.size(); ++t)
+        if (copy.reversed[t]) std::swap(copy.tets[t][2], copy.tets[t][3]);
+    copy.reversed.clear();
+    return copy;
+}
+
+}  // namespace
+
+const GeometryModel& Improver::geometry(const TetMesh& mesh) const {
+    if (!geometry_valid_) {
+        GeometrySettings settings;
+        settings.feature_angle_deg = params_.feature_angle;
+        settings.fit_tolerance = params_.fit_tolerance;
+        geometry_ = GeometryModel::extract(mesh, settings, reference_points_);
+        geometry_valid_ = true;
+        apply_reference_errors();
+    }
+    return geometry_;
+}
+
+// A cylinder's acceptable error: the largest its own surface vertices
+// brought from their reference regions; without a reference, its own.
+void Improver::apply_reference_errors() const {
+    for (SurfaceRegion& r : geometry_.regions()) r.acceptable_error = vertex_acceptable_.empty() ? r.own_error : 0.0;
+    const int32_t n = std::min(geometry_.num_vertices(), static_cast<int32_t>(vertex_acceptable_.size()));
+    for (int32_t v = 0; v < n; ++v) {
+        if (geometry_.vertex_class(v) != VertexClass::Surface || geometry_.entity(v) < 0) continue;
+        SurfaceRegion& r = geometry_.regions()[geometry_.entity(v)];
+        if (r.shape.type == ShapeType::Cylinder) r.acceptable_error = std::max(r.acceptable_error, vertex_acceptable_[v]);
+    }
+}
+
+void Improver::clear_reference() {
+    density_ = DensityGrid();
+    vertex_acceptable_.clear();
+    reference_points_.clear();
+    geometry_valid_ = false;
+    classes_valid_ = false;
+}
+
+// Sec. 3.2: the reference's vertex densities, carried to the vertices of
+// this mesh (made vertices through their parents) and interpolated over a
+// grid of about one mean edge length; sec. 3.3: per cylinder of the
+// reference, the largest distance of an edge midpoint from it.
+void Improver::set_reference(const TetMesh& reference, const TetMesh& mesh) {
+    if (reference.num_vertices() != mesh.num_input_vertices())
+        throw Error(BODT_ERR_INVALID_ARGUMENT, "the reference mesh has " + std::to_string(reference.num_vertices()) +
+                                                   " vertices, but this mesh was made with " +
+                                                   std::to_string(mesh.num_input_vertices()) +
+                                                   ": a reference must have the same vertices, numbered alike");
+    const std::vector<double> ref_density = vertex_density(reference);
+    std::vector<double> density(ref_density);
+    for (const Parents& parents : mesh.new_parents) {
+        double value = 0.0;
+        for (const Parent& p : parents) value += p.weight * ref_density[p.vertex];
+        density.push_back(value);
+    }
+    DensityGrid grid = DensityGrid::interpolate(mesh, density, mean_edge_length(mesh));
+
+    GeometrySettings settings;
+    settings.feature_angle_deg = params_.feature_angle;
+    settings.fit_tolerance = params_.fit_tolerance;
+    const GeometryModel ref = GeometryModel::extract(reference, settings);
+    std::vector<double> region_error(ref.regions().size(), 0.0);
+    for (const SurfaceFace& f : reference.surface_faces()) {
+        const Vec3 &a = reference.points[f.v[0]], &b = reference.points[f.v[1]], &c = reference.points[f.v[2]];
+        const int32_t r = ref.face_region(f.v[0], f.v[1], f.v[2], (a + b + c) / 3.0);
+        if (r < 0 || ref.regions()[r].shape.type != ShapeType::Cylinder) continue;
+        const Shape& s = ref.regions()[r].shape;
+        for (const auto& [p, q] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
+            region_error[r] = std::max(region_error[r], s.distance(0.5 * (p + q)));
+    }
+    std::vector<double> acceptable(static_cast<size_t>(reference.num_vertices()), 0.0);
+    for (int32_t v = 0; v < reference.num_vertices(); ++v)
+        if (ref.vertex_class(v) == VertexClass::Surface && ref.entity(v) >= 0) acceptable[v] = region_error[ref.entity(v)];
+
+    density_ = std::move(grid);
+    vertex_acceptable_ = std::move(acceptable);
+    reference_points_ = reference.points;
+    geometry_valid_ = false;  // extracted again with the reference's sharp edges
+    classes_valid_ = false;
+}
+
+// Phases 1, 2, 3 (sec. 3.4.2 - 3.4.4), each vertex through the guard; a
+// shortened move follows its path (on the circle or cylinder).
+void Improver::sweep_phased(TetMesh& mesh, StepReport& report) {
+    PhasedOdt odt(geometry(mesh), params_.odt_step);
+    MoveGuard guard({params_.min_stretch, 0, params_.never_worse != 0});
+    const std::vector<FaceKey> no_faces;
+    for (int phase = 1; phase <= 3; ++phase) {
+        for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
+            PlannedMove move;
+            const bool planned = phase == 1   ? odt.chain_move(mesh, v, move)
+                                 : phase == 2 ? odt.surface_move(mesh, v, move)
+                                              : odt.interior_move(mesh, v, move);
+            if (!planned || !move.target.allFinite()) continue;
+            const std::vector<FaceKey>& faces = phase == 3 ? no_faces : odt.faces();
+            MoveOutcome outcome = MoveOutcome::Rejected;
+            double distance = 0.0;
+            double f = 1.0;
+            for (int attempt = 0; attempt <= params_.backtrack_steps && outcome == MoveOutcome::Rejected; ++attempt, f *= 0.5)
+                if (guard.move(mesh, v, move.at(f), faces, distance) != MoveOutcome::Rejected)
+                    outcome = attempt == 0 ? MoveOutcome::Moved : MoveOutcome::Shortened;
+            if (outcome != MoveOutcome::Rejected) ++report.vertices_moved;
+            if (outcome == MoveOutcome::Shortened) ++report.moves_shortened;
+            if (outcome == MoveOutcome::Rejected) ++report.moves_rejected;
+            report.max_move = std::max(report.max_move, distance);
+        }
+    }
+}
+
+// Fig. 3: bad tets out, properties back, then ODT by phases, then flips.
+void Improver::step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report) {
+    const int32_t bits = ops();
+    this->geometry(mesh);  // extracted if it is not yet
+    GeometryModel& geometry = geometry_;
+    PhasedTopologySettings settings;
+    settings.rules.min_stretch = params_.min_stretch;
+    settings.bad_angle_deg = params_.bad_angle;
+    settings.split_ratio = params_.density_split;
+    settings.collapse_ratio = params_.density_collapse;
+    settings.split = bits & BODT_OP_INSERT;
+    settings.collapse = bits & BODT_OP_COLLAPSE;
+    settings.flip = bits & BODT_OP_FLIP;
+
+    if (settings.split || settings.collapse) {
+        const TetMesh ordered = consistently_ordered(mesh);
+        EditableMesh editable(ordered, geometry.vertex_classes());
+        PhasedTopology topology(editable, geometry, settings);
+        PhasedTopologyCounts counts;
+        if (settings.collapse) counts.inverted_removed = topology.remove_inverted();
+        if (settings.split && settings.collapse) counts.degenerate_removed = topology.remove_degenerate();
+        topology.recover(density_.empty() ? nullptr : &density_, counts);
+        editable.commit();
+        if (counts.changed()) {
+            write_back(editable, mesh, surfaces, geometry);
+            classes_valid_ = false;
+        }
+        report.vertices_inserted += counts.splits + counts.degenerate_removed;
+        report.edges_collapsed += counts.collapses + counts.inverted_removed + counts.degenerate_removed;
+    }
+    if (bits & BODT_OP_SMOOTH) sweep_phased(mesh, report);
+    if (settings.flip) {
+        const TetMesh ordered = consistently_ordered(mesh);
+        EditableMesh editable(ordered, geometry.vertex_classes());
+        PhasedTopology topology(editable, geometry, settings);
+        int32_t flips = topology.flip_surface();
+        // Sec. 3.4.4: 2-3, 3-2 and 4-4 flips inside, under the Delaunay conditions.
+        TopologySettings inside;
+        inside.rules.surface_may_change = false;
+        inside.rules.min_stretch = params_.min_stretch;
+        inside.rules.delaunay = true;
+        inside.flip = true;
+        inside.insert = inside.collapse = false;
+        flips += improve_topology(editable, inside).flips;
+        editable.commit();
+        if (flips > 0) {
+            write_back(editable, mesh, surfaces, geometry);
+            classes_valid_ = false;
+        }
+        report.flips += flips;
+    }
+}
+
+}  // namespace bodt

@@ -1,0 +1,382 @@
+#include "topology/phased_topology.hpp"
+
+#include "topology/bad_tets.hpp"
+#include "topology/op_support.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace bodt {
+
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+
+// The tets touching any of `vs`, each once.
+std::vector<int32_t> tets_around(const EditableMesh& mesh, std::initializer_list<int32_t> vs) {
+    std::vector<int32_t> out;
+    for (int32_t v : vs)
+        if (v >= 0) out.insert(out.end(), mesh.tets_of(v).begin(), mesh.tets_of(v).end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+int rank(VertexClass c) {
+    switch (c) {
+        case VertexClass::Interior: return 0;
+        case VertexClass::Surface: return 1;
+        case VertexClass::FeatureLine: return 2;
+        default: return 3;  // corners and fixed vertices never go
+    }
+}
+
+// The distinct edges of the surface faces, in a fixed order.
+std::vector<std::array<int32_t, 2>> surface_edges(const EditableMesh& mesh) {
+    EdgeSet seen;
+    std::vector<std::array<int32_t, 2>> out;
+    for (int32_t t = 0; t < mesh.tet_capacity(); ++t) {
+        if (!mesh.alive(t)) continue;
+        const Tet& q = mesh.tet(t);
+        for (const auto& f : kFaceVertex) {
+            const FaceKey key = FaceKey::of(q[f[0]], q[f[1]], q[f[2]]);
+            if (!mesh.is_surface_face(key)) continue;
+            for (int i = 0; i < 3; ++i) {
+                const int32_t a = key.v[i], b = key.v[(i + 1) % 3];
+                if (seen.insert(edge_key(a, b)).second) out.push_back({std::min(a, b), std::max(a, b)});
+            }
+        }
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+std::vector<std::array<int32_t, 2>> all_edges(const EditableMesh& mesh) {
+    std::vector<std::array<int32_t, 2>> out;
+    for (int32_t t = 0; t < mesh.tet_capacity(); ++t) {
+        if (!mesh.alive(t)) continue;
+        const Tet& q = mesh.tet(t);
+        for (const auto& e : kEdgeVertex) out.push_back({std::min(q[e[0]], q[e[1]]), std::max(q[e[0]], q[e[1]])});
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+bool is_edge(const EditableMesh& mesh, int32_t a, int32_t b) { return !mesh.tets_holding({a, b}).empty(); }
+
+// The surface faces on edge (a, b): their third vertices.
+std::vector<int32_t> surface_opposites(const EditableMesh& mesh, int32_t a, int32_t b) {
+    std::vector<int32_t> out;
+    for (int32_t t : mesh.tets_holding({a, b}))
+        for (int32_t c : mesh.tet(t))
+            if (c != a && c != b && mesh.is_surface_face(FaceKey::of(a, b, c)) &&
+                std::find(out.begin(), out.end(), c) == out.end())
+                out.push_back(c);
+    return out;
+}
+
+double angle_at(const Vec3& p, const Vec3& q, const Vec3& r) {
+    const Vec3 a = q - p, b = r - p;
+    return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+}  // namespace
+
+PhasedTopology::PhasedTopology(EditableMesh& mesh, GeometryModel& geometry, const PhasedTopologySettings& settings)
+    : mesh_(mesh), geometry_(geometry), settings_(settings) {
+    settings_.rules.surface_may_change = true;
+    settings_.rules.on_curved_shape = [this](const EditableMesh&, std::initializer_list<int32_t> element, const Vec3& x) {
+        return on_shape(element, x);
+    };
+}
+
+// The shape under a surface face (three vertices) or a sharp edge (two).
+const Shape* PhasedTopology::element_shape(std::initializer_list<int32_t> element) const {
+    const int32_t* v = element.begin();
+    for (const int32_t* u = v; u != element.end(); ++u)
+        if (*u >= geometry_.num_vertices()) return nullptr;
+    if (element.size() == 2) {
+        for (int32_t u : element)
+            if (geometry_.vertex_class(u) == VertexClass::FeatureLine) return geometry_.shape_of(u);
+        return nullptr;
+    }
+    const Vec3 centroid = (mesh_.point(v[0]) + mesh_.point(v[1]) + mesh_.point(v[2])) / 3.0;
+    const int32_t r = geometry_.face_region(v[0], v[1], v[2], centroid);
+    if (r < 0) return nullptr;
+    const Shape& s = geometry_.regions()[r].shape;
+    return s.type == ShapeType::None ? nullptr : &s;
+}
+
+bool PhasedTopology::on_shape(std::initializer_list<int32_t> element, const Vec3& x) const {
+    const Shape* s = element_shape(element);
+    if (!s || s->type == ShapeType::Plane || s->type == ShapeType::Line) return false;
+    const double scale = (mesh_.point(*element.begin()) - x).norm() + s->radius;
+    return s->distance(x) <= s->max_error + 1e-9 * scale;
+}
+
+bool PhasedTopology::accurate_at(int32_t v) const {
+    std::vector<int32_t> around;
+    mesh_.neighbors(v, around);
+    for (int32_t x : around) {
+        if (!mesh_.is_surface_edge(v, x)) continue;
+        const Vec3 mid = 0.5 * (mesh_.point(v) + mesh_.point(x));
+        for (int32_t c : surface_opposites(mesh_, v, x)) {
+            const Shape* s = element_shape({v, x, c});
+            if (!s || s->type != ShapeType::Cylinder) continue;
+            const int32_t r = geometry_.face_region(v, x, c, (mesh_.point(v) + mesh_.point(x) + mesh_.point(c)) / 3.0);
+            const double limit = geometry_.regions()[r].acceptable_error;
+            if (limit > 0.0 && s->distance(mid) > limit * (1.0 + 1e-9)) return false;
+        }
+    }
+    return true;
+}
+
+// Splits (a, b) at its midpoint; a vertex on a surface or sharp edge then
+// goes onto the fitted shape, if every tet around stays acceptable.
+int32_t PhasedTopology::split_onto_shape(int32_t a, int32_t b) {
+    const size_t mark = mesh_.checkpoint();
+    const std::vector<int32_t> around = mesh_.tets_holding({a, b});
+    const double must_exceed = std::min(worst_sine(mesh_, around), std::sin(settings_.bad_angle_deg * kDegree));
+    const int32_t m = split_edge(mesh_, a, b, 0.5 * (mesh_.point(a) + mesh_.point(b)), settings_.rules, must_exceed);
+    if (m < 0) return -1;
+    const VertexClass cls = mesh_.vertex_class(m);
+    int32_t entity = -1;
+    if (cls == VertexClass::FeatureLine) {
+        for (int32_t u : {a, b})
+            if (geometry_.vertex_class(u) == VertexClass::FeatureLine) entity = geometry_.entity(u);
+    }
+    geometry_.set(m, cls, entity);
+    if (cls != VertexClass::Interior && entity < 0) geometry_.set(m, cls, geometry_.resolve(mesh_, m));
+    const Shape* shape = geometry_.shape_of(m);
+    if (!shape) return m;
+    const std::vector<int32_t> star = mesh_.tets_of(m);
+    const TetLimits limits = limits_for(mesh_, star, settings_.rules, must_exceed);
+    mesh_.move_vertex(m, shape->project(mesh_.point(m)));
+    for (int32_t t : star)
+        if (!acceptable_tet(mesh_.tet_points(t), limits)) {
+            mesh_.rollback(mark);
+            return -1;
+        }
+    return m;
+}
+
+// Sec. 3.5.1's exclusions and position rules: never two corners, an edge
+// off the sharp edges between two of their vertices, or an interior edge
+// between two surface vertices; the endpoint of higher class stays, equal
+// classes meet at the midpoint (on their shape).  Returns the kept vertex.
+int32_t PhasedTopology::collapse_by_rules(int32_t a, int32_t b) {
+    const VertexClass ca = mesh_.vertex_class(a), cb = mesh_.vertex_class(b);
+    const int ra = rank(ca), rb = rank(cb);
+    if (ra == 3 && rb == 3) return -1;                                         // (a)
+    if (ra >= 2 && rb >= 2 && !mesh_.is_feature_edge(a, b)) return -1;        // (b)
+    if (ra >= 1 && rb >= 1 && !mesh_.is_surface_edge(a, b)) return -1;        // (c)
+    const std::vector<int32_t> around = tets_around(mesh_, {a, b});
+    const double must_exceed = std::min(worst_sine(mesh_, around), std::sin(settings_.bad_angle_deg * kDegree));
+    const size_t mark = mesh_.checkpoint();
+    if (ra != rb) {
+        const int32_t keep = ra > rb ? a : b, gone = ra > rb ? b : a;
+        if (collapse_half_edge(mesh_, gone, keep, settings_.rules, must_exceed) && accurate_at(keep)) return keep;
+        mesh_.rollback(mark);
+        return -1;
+    }
+    Vec3 mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
+    if (const Shape* shape = geometry_.shape_of(b)) mid = shape->project(mid);
+    const std::vector<int32_t> star = mesh_.tets_of(b);
+    const TetLimits limits = limits_for(mesh_, star, settings_.rules, must_exceed);
+    mesh_.move_vertex(b, mid);
+    bool ok = true;
+    for (int32_t t : star) {
+        const Tet& q = mesh_.tet(t);
+        if (std::find(q.begin(), q.end(), a) == q.end()) ok = ok && acceptable_tet(mesh_.tet_points(t), limits);
+    }
+    if (ok && collapse_half_edge(mesh_, a, b, settings_.rules, must_exceed) && accurate_at(b)) return b;
+    mesh_.rollback(mark);
+    return -1;
+}
+
+int32_t PhasedTopology::remove_inverted() {
+    TopologyRules untangle = settings_.rules;
+    untangle.allow_inverted = true;
+    // How bad a set of tets is: how many are not positive, then the worst
+    // stretch (negated, so that smaller is better in both).
+    const auto badness = [this](const std::vector<int32_t>& tets) {
+        int32_t count = 0;
+        double worst = std::numeric_limits<double>::infinity();
+        for (int32_t t : tets) {
+            if (!mesh_.alive(t)) continue;
+            const double s = stretch(mesh_.tet_points(t));
+            count += s <= 0.0;
+            worst = std::min(worst, s);
+        }
+        return std::pair<int32_t, double>{count, -worst};
+    };
+    int32_t removed = 0;
+    std::vector<char> stuck;
+    while (true) {
+        int32_t worst = -1;
+        double worst_stretch = 0.0;
+        stuck.resize(static_cast<size_t>(mesh_.tet_capacity()), 0);
+        for (int32_t t = 0; t < mesh_.tet_capacity(); ++t) {
+            if (!mesh_.alive(t) || stuck[t]) continue;
+            const double s = stretch(mesh_.tet_points(t));
+            if (s <= worst_stretch) {
+                worst = t;
+                worst_stretch = s;
+            }
+        }
+        if (worst < 0) return removed;
+        // Of the worst tet's twelve half-edge collapses, the one that leaves
+        // the fewest bad tets around the kept vertex, then the best worst
+        // stretch there; kept only if that beats the tets it changed.
+        const Tet q = mesh_.tet(worst);
+        std::pair<int32_t, double> best{INT32_MAX, 0.0};
+        int32_t best_gone = -1, best_keep = -1;
+        for (const auto& e : kEdgeVertex)
+            for (int dir = 0; dir < 2; ++dir) {
+                const int32_t gone = q[e[dir]], keep = q[e[1 - dir]];
+                const auto before = badness(tets_around(mesh_, {gone, keep}));
+                const size_t mark = mesh_.checkpoint();
+                if (collapse_half_edge(mesh_, gone, keep, untangle, 0.0)) {
+                    const auto after = badness(mesh_.tets_of(keep));
+                    if (after < before && after < best) {
+                        best = after;
+                        best_gone = gone;
+                        best_keep = keep;
+                    }
+                }
+                mesh_.rollback(mark);
+            }
+        if (best_gone < 0 || !collapse_half_edge(mesh_, best_gone, best_keep, untangle, 0.0)) {
+            stuck[worst] = 1;
+            continue;
+        }
+        ++removed;
+    }
+}
+
+int32_t PhasedTopology::remove_degenerate() {
+    const double bad_sine = std::sin(settings_.bad_angle_deg * kDegree);
+    std::vector<std::pair<double, int32_t>> bad;
+    for (int32_t t = 0; t < mesh_.tet_capacity(); ++t) {
+        if (!mesh_.alive(t)) continue;
+        const double s = min_dihedral_sine(mesh_.tet_points(t));
+        if (s < bad_sine) bad.push_back({s, t});
+    }
+    std::sort(bad.begin(), bad.end());
+    int32_t removed = 0;
+    for (const auto& [sine, t] : bad) {
+        if (!mesh_.alive(t)) continue;
+        const TetPoints p = mesh_.tet_points(t);
+        const BadTet kind = classify_bad_tet(p, settings_.bad_angle_deg);
+        const Tet q = mesh_.tet(t);
+        const std::vector<int32_t> region = tets_around(mesh_, {q[0], q[1], q[2], q[3]});
+        const double before = worst_sine(mesh_, region);
+        const size_t mark = mesh_.checkpoint();
+        int32_t kept = -1;
+        if (kind.kind == BadTetKind::Sliver) {
+            // The two crossing edges split, the new short edge collapsed.
+            const int32_t m1 = split_onto_shape(q[kind.edge[0]], q[kind.edge[1]]);
+            const int32_t m2 = m1 < 0 ? -1 : split_onto_shape(q[kind.edge2[0]], q[kind.edge2[1]]);
+            if (m2 >= 0 && is_edge(mesh_, m1, m2)) kept = collapse_by_rules(m1, m2);
+        } else if (kind.kind == BadTetKind::Cap || kind.kind == BadTetKind::Spade) {
+            // The edge between the largest and the smallest face is split;
+            // the smallest face's third vertex and the new one collapse.
+            double area[4];
+            for (int i = 0; i < 4; ++i)
+                area[i] = triangle_normal(p[kFaceVertex[i][0]], p[kFaceVertex[i][1]], p[kFaceVertex[i][2]]).norm();
+            const int large = static_cast<int>(std::max_element(area, area + 4) - area);
+            const int small = static_cast<int>(std::min_element(area, area + 4) - area);
+            if (large != small) {
+                int e[2], k = 0;
+                for (int i = 0; i < 4; ++i)
+                    if (i != large && i != small) e[k++] = i;
+                const int32_t apex = q[large];  // in the smallest face, off the edge
+                const int32_t m = split_onto_shape(q[e[0]], q[e[1]]);
+                if (m >= 0 && is_edge(mesh_, m, apex)) kept = collapse_by_rules(m, apex);
+            }
+        }
+        std::vector<int32_t> after_region;
+        for (int32_t v : q)
+            if (!mesh_.tets_of(v).empty()) after_region.insert(after_region.end(), mesh_.tets_of(v).begin(), mesh_.tets_of(v).end());
+        if (kept >= 0) after_region.insert(after_region.end(), mesh_.tets_of(kept).begin(), mesh_.tets_of(kept).end());
+        if (kept < 0 || mesh_.alive(t) || !(worst_sine(mesh_, after_region) > before)) {
+            mesh_.rollback(mark);
+            continue;
+        }
+        ++removed;
+    }
+    return removed;
+}
+
+void PhasedTopology::recover(const DensityGrid* density, PhasedTopologyCounts& counts) {
+    if (!settings_.split && !settings_.collapse) return;
+    // Geometric accuracy: surface edges of a cylinder too far from it.
+    if (settings_.split) {
+        for (const auto& [a, b] : surface_edges(mesh_)) {
+            if (!is_edge(mesh_, a, b)) continue;
+            const Vec3 mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
+            double limit = std::numeric_limits<double>::infinity();
+            for (int32_t c : surface_opposites(mesh_, a, b)) {
+                if (c >= geometry_.num_vertices()) continue;
+                const int32_t r = geometry_.face_region(a, b, c, (mesh_.point(a) + mesh_.point(b) + mesh_.point(c)) / 3.0);
+                if (r < 0) continue;
+                const SurfaceRegion& region = geometry_.regions()[r];
+                if (region.shape.type == ShapeType::Cylinder && region.acceptable_error > 0.0 &&
+                    region.shape.distance(mid) > region.acceptable_error)
+                    limit = std::min(limit, region.acceptable_error);
+            }
+            if (std::isfinite(limit) && split_onto_shape(a, b) >= 0) ++counts.splits;
+        }
+    }
+    if (!density || density->empty()) return;
+    // Density: split sparse edges, collapse dense ones.
+    for (const auto& [a, b] : all_edges(mesh_)) {
+        if (mesh_.tets_of(a).empty() || mesh_.tets_of(b).empty() || !is_edge(mesh_, a, b)) continue;
+        const Vec3 mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
+        const double target = density->at(mid);
+        if (!(target > 0.0)) continue;
+        const double rho = 1.0 / (mesh_.point(a) - mesh_.point(b)).norm();
+        if (settings_.split && rho < settings_.split_ratio * target) {
+            if (split_onto_shape(a, b) >= 0) ++counts.splits;
+        } else if (settings_.collapse && rho > settings_.collapse_ratio * target) {
+            if (collapse_by_rules(a, b) >= 0) ++counts.collapses;
+        }
+    }
+}
+
+int32_t PhasedTopology::flip_surface() {
+    int32_t flips = 0;
+    for (const auto& [a, b] : surface_edges(mesh_)) {
+        if (mesh_.is_feature_edge(a, b) || !is_edge(mesh_, a, b)) continue;
+        const std::vector<int32_t> opp = surface_opposites(mesh_, a, b);
+        if (opp.size() != 2) continue;
+        const int32_t c = opp[0], d = opp[1];
+        const Vec3 &pa = mesh_.point(a), &pb = mesh_.point(b);
+        if (!(angle_at(mesh_.point(c), pa, pb) + angle_at(mesh_.point(d), pa, pb) > M_PI * (1.0 + 1e-9))) continue;
+        if (is_edge(mesh_, c, d)) continue;  // the flipped edge exists already
+        const std::vector<int32_t> region = tets_around(mesh_, {a, b, c, d});
+        const double before = worst_sine(mesh_, region);
+        const size_t mark = mesh_.checkpoint();
+        const int32_t m = split_onto_shape(a, b);
+        bool done = false;
+        for (int32_t to : {c, d}) {
+            if (done || m < 0) break;
+            const size_t inner = mesh_.checkpoint();
+            if (collapse_half_edge(mesh_, m, to, settings_.rules, 0.0) && accurate_at(to) &&
+                worst_sine(mesh_, tets_around(mesh_, {a, b, c, d})) >= before)
+                done = true;
+            else
+                mesh_.rollback(inner);
+        }
+        if (!done) {
+            mesh_.rollback(mark);
+            continue;
+        }
+        ++flips;
+    }
+    return flips;
+}
+
+}  // namespace bodt
