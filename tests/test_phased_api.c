@@ -33,10 +33,6 @@
  *                  region, too small capacity
  *   density grid   a uniform box with a constant target density twice its
  *                  own: a few steps add vertices and lower the density error
- *
- * Until libbodt.so exports paper 002's functions, the test still links:
- * they are weak references here (GCC), and a case that needs a missing one
- * fails saying so.  Drop the #pragma block once the library has them all.
  */
 #include "api_checks.h"
 #include "bodt.h"
@@ -46,32 +42,6 @@
 
 #include <stdio.h>
 #include <stdlib.h>
-
-#if defined(__GNUC__)
-#pragma weak bodt_mesh_get_geometry_counts
-#pragma weak bodt_mesh_get_geometry_classes
-#pragma weak bodt_mesh_get_face_regions
-#pragma weak bodt_mesh_get_region_shape
-#pragma weak bodt_set_reference_mesh
-#pragma weak bodt_set_target_density
-#pragma weak bodt_mesh_recovery_error
-#endif
-
-/* Fails the case when the library does not export fn (weak reference). */
-#define NEED(fn)                                                                                       \
-    do {                                                                                               \
-        if (!(fn)) fail_msg("%s is not exported by libbodt.so", #fn);                                  \
-    } while (0)
-
-static void need_paper002(void) {
-    NEED(bodt_mesh_get_geometry_counts);
-    NEED(bodt_mesh_get_geometry_classes);
-    NEED(bodt_mesh_get_face_regions);
-    NEED(bodt_mesh_get_region_shape);
-    NEED(bodt_set_reference_mesh);
-    NEED(bodt_set_target_density);
-    NEED(bodt_mesh_recovery_error);
-}
 
 /* ------------------------------------------------------------- helpers */
 
@@ -84,7 +54,7 @@ typedef struct hole_params {
     double half_width, radius, height;
 } hole_params;
 
-/* The mesh of the deformation cases (the lead's suggestion): the hole's
+/* The mesh of the deformation cases: the hole's
  * radius 0.3 -> 0.5 reaches past ring 1 everywhere on the x < 0 side. */
 static const hole_params kHole = {6, 24, 4, 1.0, 0.3, 0.6};
 static const double kStretch = 1.5;
@@ -434,7 +404,6 @@ static int part_surface(const hole_params *p, const double *xyz, const int32_t *
 
 static void test_geometry(void **state) {
     (void)state;
-    need_paper002();
     const hole_params *p = &kHole;
     const test_mesh *m = make_hole(p);
     bodt_mesh *h = create_ok(m, 0);
@@ -514,7 +483,6 @@ static void test_geometry(void **state) {
 
 static void test_recovery(void **state) {
     (void)state;
-    need_paper002();
     const hole_params *p = &kHole;
     const test_mesh *m0 = make_hole(p);
     const test_mesh *m = make_deformed(p, kStretch, kNewRadius);
@@ -689,7 +657,6 @@ static void test_bad_input(void **state) {
         assert_int_equal(bodt_set_param_double(h, p->key, p->def), BODT_OK);
     }
 
-    need_paper002();
 
     /* no target density yet: no edges measured */
     bodt_recovery_error e = recovery(h);
@@ -755,7 +722,6 @@ static void test_bad_input(void **state) {
 
 static void test_density_grid(void **state) {
     (void)state;
-    need_paper002();
     test_mesh *m = cleanup_add(calloc(1, sizeof *m), cleanup_free_test_mesh);
     assert_non_null(m);
     assert_int_equal(tm_make_box(m, 6, 0.0, 1), 0);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
 
 namespace bodt {
 
@@ -141,11 +142,17 @@ int32_t PhasedTopology::split_onto_shape(int32_t a, int32_t b) {
     const double must_exceed = std::min(worst_sine(mesh_, around), std::sin(settings_.bad_angle_deg * kDegree));
     const int32_t m = split_edge(mesh_, a, b, 0.5 * (mesh_.point(a) + mesh_.point(b)), settings_.rules, must_exceed);
     if (m < 0) return -1;
+    // The new vertex's entity: the chain of the split sharp edge, or the
+    // region of the faces on the split surface edge.
     const VertexClass cls = mesh_.vertex_class(m);
     int32_t entity = -1;
     if (cls == VertexClass::FeatureLine) {
         for (int32_t u : {a, b})
             if (geometry_.vertex_class(u) == VertexClass::FeatureLine) entity = geometry_.entity(u);
+    } else if (cls == VertexClass::Surface) {
+        for (int32_t c : surface_opposites(mesh_, a, m))
+            if (entity < 0 && c < geometry_.num_vertices())
+                entity = geometry_.face_region(a, b, c, (mesh_.point(a) + mesh_.point(b) + mesh_.point(c)) / 3.0);
     }
     geometry_.set(m, cls, entity);
     if (cls != VertexClass::Interior && entity < 0) geometry_.set(m, cls, geometry_.resolve(mesh_, m));
@@ -212,21 +219,19 @@ int32_t PhasedTopology::remove_inverted() {
         }
         return std::pair<int32_t, double>{count, -worst};
     };
+    // Worst first; the tets a collapse leaves bad join the queue.
+    using Entry = std::pair<double, int32_t>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+    for (int32_t t = 0; t < mesh_.tet_capacity(); ++t) {
+        if (!mesh_.alive(t)) continue;
+        const double s = stretch(mesh_.tet_points(t));
+        if (s <= 0.0) queue.push({s, t});
+    }
     int32_t removed = 0;
-    std::vector<char> stuck;
-    while (true) {
-        int32_t worst = -1;
-        double worst_stretch = 0.0;
-        stuck.resize(static_cast<size_t>(mesh_.tet_capacity()), 0);
-        for (int32_t t = 0; t < mesh_.tet_capacity(); ++t) {
-            if (!mesh_.alive(t) || stuck[t]) continue;
-            const double s = stretch(mesh_.tet_points(t));
-            if (s <= worst_stretch) {
-                worst = t;
-                worst_stretch = s;
-            }
-        }
-        if (worst < 0) return removed;
+    while (!queue.empty()) {
+        const int32_t worst = queue.top().second;
+        queue.pop();
+        if (!mesh_.alive(worst) || stretch(mesh_.tet_points(worst)) > 0.0) continue;
         // Of the worst tet's twelve half-edge collapses, the one that leaves
         // the fewest bad tets around the kept vertex, then the best worst
         // stretch there; kept only if that beats the tets it changed.
@@ -248,12 +253,14 @@ int32_t PhasedTopology::remove_inverted() {
                 }
                 mesh_.rollback(mark);
             }
-        if (best_gone < 0 || !collapse_half_edge(mesh_, best_gone, best_keep, untangle, 0.0)) {
-            stuck[worst] = 1;
-            continue;
-        }
+        if (best_gone < 0 || !collapse_half_edge(mesh_, best_gone, best_keep, untangle, 0.0)) continue;
         ++removed;
+        for (int32_t t : mesh_.tets_of(best_keep)) {
+            const double s = stretch(mesh_.tet_points(t));
+            if (s <= 0.0) queue.push({s, t});
+        }
     }
+    return removed;
 }
 
 int32_t PhasedTopology::remove_degenerate() {
