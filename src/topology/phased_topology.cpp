@@ -134,13 +134,17 @@ bool PhasedTopology::accurate_at(int32_t v) const {
     return true;
 }
 
-// Splits (a, b) at its midpoint; a vertex on a surface or sharp edge then
-// goes onto the fitted shape, if every tet around stays acceptable.
+// Splits (a, b) at its midpoint.  A vertex on a surface or sharp edge then
+// goes onto the fitted shape; an interior one to its ODT position (a few
+// rounds, the star kept positive), as the smoothing after the split would.
+// Kept if no tet around is worse than the worse of the bad angle and the
+// tets it replaced.
 int32_t PhasedTopology::split_onto_shape(int32_t a, int32_t b) {
     const size_t mark = mesh_.checkpoint();
     const std::vector<int32_t> around = mesh_.tets_holding({a, b});
     const double must_exceed = std::min(worst_sine(mesh_, around), std::sin(settings_.bad_angle_deg * kDegree));
-    const int32_t m = split_edge(mesh_, a, b, 0.5 * (mesh_.point(a) + mesh_.point(b)), settings_.rules, must_exceed);
+    const TetLimits limits = limits_for(mesh_, around, settings_.rules, must_exceed);
+    const int32_t m = split_edge(mesh_, a, b, 0.5 * (mesh_.point(a) + mesh_.point(b)), settings_.rules, 0.0);
     if (m < 0) return -1;
     // The new vertex's entity: the chain of the split sharp edge, or the
     // region of the faces on the split surface edge.
@@ -156,11 +160,35 @@ int32_t PhasedTopology::split_onto_shape(int32_t a, int32_t b) {
     }
     geometry_.set(m, cls, entity);
     if (cls != VertexClass::Interior && entity < 0) geometry_.set(m, cls, geometry_.resolve(mesh_, m));
-    const Shape* shape = geometry_.shape_of(m);
-    if (!shape) return m;
     const std::vector<int32_t> star = mesh_.tets_of(m);
-    const TetLimits limits = limits_for(mesh_, star, settings_.rules, must_exceed);
-    mesh_.move_vertex(m, shape->project(mesh_.point(m)));
+    const auto positive = [&] {
+        for (int32_t t : star) {
+            const TetPoints p = mesh_.tet_points(t);
+            if (orient(p[0], p[1], p[2], p[3]).sign <= 0) return false;
+        }
+        return true;
+    };
+    if (const Shape* shape = geometry_.shape_of(m)) {
+        mesh_.move_vertex(m, shape->project(mesh_.point(m)));
+    } else if (cls == VertexClass::Interior) {
+        for (int round = 0; round < 3; ++round) {
+            Vec3 sum = Vec3::Zero();
+            double volume = 0.0;
+            for (int32_t t : star) {
+                const TetPoints p = mesh_.tet_points(t);
+                const double v = signed_volume(p[0], p[1], p[2], p[3]);
+                sum += v * circumcenter(p);
+                volume += v;
+            }
+            const Vec3 from = mesh_.point(m), to = sum / volume;
+            if (!to.allFinite()) break;
+            mesh_.move_vertex(m, to);
+            if (!positive()) {
+                mesh_.move_vertex(m, from);
+                break;
+            }
+        }
+    }
     for (int32_t t : star)
         if (!acceptable_tet(mesh_.tet_points(t), limits)) {
             mesh_.rollback(mark);
