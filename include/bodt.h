@@ -472,6 +472,10 @@ typedef struct bodt_step_report {
     double min_dihedral;    /* after the step, degrees                    */
     double max_dihedral;
     double min_stretch;
+    /* In BODT_MODE_PHASED_ODT: flips counts surface and Delaunay flips,
+     * vertices_inserted the recovery splits and degenerate tets removed,
+     * edges_collapsed the recovery and untangling collapses and the
+     * degenerate tets removed. */
     int32_t flips;              /* edge removals and 2-3 flips kept        */
     int32_t vertices_inserted;  /* by BODT_OP_INSERT                       */
     int32_t edges_collapsed;    /* by BODT_OP_COLLAPSE                     */
