@@ -419,9 +419,12 @@ enum bodt_param {
     /* double in (1, 100], default 3/2: delta of sec. 3.5.1.  An edge whose
      * density exceeds delta times the target is collapsed. */
     BODT_PARAM_DENSITY_COLLAPSE = 20,
-    /* double in (0, 0.1], default 1e-3: a surface region is a plane (or a
+    /* double in (0, 0.1], default 1e-5: a surface region is a plane (or a
      * cylinder, a chain a line or circle) when no point of it lies further
-     * from the fitted shape than this fraction of the region's size. */
+     * from the fitted shape than this fraction of the region's size.  The
+     * default takes coordinates written with six digits and refuses
+     * patches of free-form surfaces (a sphere's), which keep their
+     * vertices. */
     BODT_PARAM_FIT_TOLERANCE = 21
 };
 

@@ -632,7 +632,7 @@ static void test_bad_input(void **state) {
         {BODT_PARAM_DENSITY_SPLIT, "BODT_PARAM_DENSITY_SPLIT", 2.0 / 3.0, {1e-9, 0.999, 0.5}, {1.0, 0.0, -0.1, NAN}, 4},
         {BODT_PARAM_DENSITY_COLLAPSE, "BODT_PARAM_DENSITY_COLLAPSE", 1.5, {100.0, 1.000001, 2.0},
          {0.9, 1.0, 100.5, NAN, INFINITY}, 5},
-        {BODT_PARAM_FIT_TOLERANCE, "BODT_PARAM_FIT_TOLERANCE", 1e-3, {0.1, 1e-9, 0.01}, {0.0, -1e-3, 0.2, NAN}, 4},
+        {BODT_PARAM_FIT_TOLERANCE, "BODT_PARAM_FIT_TOLERANCE", 1e-5, {0.1, 1e-9, 0.01}, {0.0, -1e-3, 0.2, NAN}, 4},
     };
     for (size_t k = 0; k < sizeof ds / sizeof *ds; ++k) {
         const dparam *p = &ds[k];

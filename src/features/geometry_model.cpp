@@ -67,13 +67,17 @@ Shape fit_region(const std::vector<Vec3>& pts, const std::vector<Vec3>& normals,
     return Shape{};
 }
 
-// A line if one fits, else a circle (closed) or an arc, else None.
-Shape fit_chain(const std::vector<Vec3>& pts, bool closed, double tolerance) {
+// A line if one fits, else a circle (closed) or an arc, else None.  A chain
+// is curved only along a cylinder (sec. 3.3: by the types of the regions
+// beside it; two planes meet in a line), and only on four points or more
+// (three always lie on a circle).
+Shape fit_chain(const std::vector<Vec3>& pts, bool closed, bool along_cylinder, double tolerance) {
     const double size = extent(pts);
     if (!closed) {
         Shape line = fit_line(pts);
         if (line.type == ShapeType::Line && line.max_error <= tolerance * size) return line;
     }
+    if (!along_cylinder || pts.size() < 4) return Shape{};
     Shape circle = fit_circle(pts);
     if (circle.type == ShapeType::Arc && circle.max_error <= tolerance * size) {
         if (closed) circle.type = ShapeType::Circle;
@@ -218,15 +222,23 @@ GeometryModel GeometryModel::extract(const TetMesh& mesh, const GeometrySettings
         }
         region.acceptable_error = region.own_error;
     }
+    for (size_t f = 0; f < faces.size(); ++f) {
+        const auto& v = faces[f].v;
+        if (g.cls_[v[0]] != VertexClass::Surface && g.cls_[v[1]] != VertexClass::Surface &&
+            g.cls_[v[2]] != VertexClass::Surface)
+            g.rim_faces_[FaceKey::of(v[0], v[1], v[2])] = face_region[f];
+    }
     for (size_t c = 0; c < chain_vertices.size(); ++c) {
         const auto& vs = chain_vertices[c];
         std::vector<Vec3> pts;
         for (int32_t v : vs) pts.push_back(mesh.points[v]);
         SharpChain chain;
-        chain.shape = fit_chain(pts, chain_closed[c], settings.fit_tolerance);
         for (size_t i = 0; i + 1 < vs.size() + (chain_closed[c] ? 1 : 0); ++i)
             for (int32_t f : on_edge.at(edge_key(vs[i], vs[(i + 1) % vs.size()]))) add_unique(chain.regions, face_region[f]);
         std::sort(chain.regions.begin(), chain.regions.end());
+        bool along_cylinder = false;
+        for (int32_t r : chain.regions) along_cylinder = along_cylinder || g.regions_[r].shape.type == ShapeType::Cylinder;
+        chain.shape = fit_chain(pts, chain_closed[c], along_cylinder, settings.fit_tolerance);
         const int32_t id = static_cast<int32_t>(g.chains_.size());
         for (int32_t v : vs) {
             if (g.cls_[v] == VertexClass::FeatureLine) g.entity_[v] = id;
@@ -235,13 +247,23 @@ GeometryModel GeometryModel::extract(const TetMesh& mesh, const GeometrySettings
         g.chains_.push_back(std::move(chain));
     }
     for (int32_t v = 0; v < nv; ++v) {
-        if (mesh.vflags[v] & kUnused) g.cls_[v] = VertexClass::Unused;
-        else if (mesh.vflags[v] & kFixed) g.cls_[v] = VertexClass::Fixed;
+        if (mesh.vflags[v] & kUnused) {
+            g.cls_[v] = VertexClass::Unused;
+        } else if (mesh.vflags[v] & kFixed) {
+            // A fixed vertex keeps its regions and chains, as a corner does.
+            if (g.cls_[v] == VertexClass::Surface || g.cls_[v] == VertexClass::FeatureLine) {
+                g.corner_regions_[v] = g.regions_at(v);
+                if (g.cls_[v] == VertexClass::FeatureLine) g.corner_chains_[v] = {g.entity_[v]};
+            }
+            g.cls_[v] = VertexClass::Fixed;
+            g.entity_[v] = -1;
+        }
     }
     return g;
 }
 
 std::vector<int32_t> GeometryModel::regions_at(int32_t v) const {
+    if ((cls_[v] == VertexClass::Surface || cls_[v] == VertexClass::FeatureLine) && entity_[v] < 0) return {};
     switch (cls_[v]) {
         case VertexClass::Surface: return {entity_[v]};
         case VertexClass::FeatureLine: return chains_[entity_[v]].regions;
@@ -253,6 +275,8 @@ std::vector<int32_t> GeometryModel::regions_at(int32_t v) const {
 }
 
 int32_t GeometryModel::face_region(int32_t a, int32_t b, int32_t c, const Vec3& centroid) const {
+    const auto rim = rim_faces_.find(FaceKey::of(a, b, c));
+    if (rim != rim_faces_.end()) return rim->second;
     std::vector<int32_t> common = regions_at(a);
     for (int32_t x : {b, c}) {
         const std::vector<int32_t> rx = regions_at(x);
@@ -359,6 +383,12 @@ void GeometryModel::follow(const EditableMesh& edited, const std::vector<int32_t
         if (renumber[v] >= 0) corner_chains[renumber[v]] = cs;
     corner_regions_ = std::move(corner_regions);
     corner_chains_ = std::move(corner_chains);
+    std::unordered_map<FaceKey, int32_t, FaceKeyHash> rim_faces;
+    for (const auto& [f, r] : rim_faces_) {
+        const int32_t a = renumber[f.v[0]], b = renumber[f.v[1]], c = renumber[f.v[2]];
+        if (a >= 0 && b >= 0 && c >= 0) rim_faces[FaceKey::of(a, b, c)] = r;
+    }
+    rim_faces_ = std::move(rim_faces);
 }
 
 }  // namespace bodt

@@ -38,7 +38,7 @@ struct SharpChain {
 
 struct GeometrySettings {
     double feature_angle_deg = 30.0;
-    double fit_tolerance = 1e-3;  // max distance from the shape / size of the fitted part
+    double fit_tolerance = 1e-5;  // max distance from the shape / size of the fitted part
 };
 
 class GeometryModel {
@@ -69,8 +69,9 @@ public:
 
     // The regions vertex v touches (one for a Surface vertex).
     std::vector<int32_t> regions_at(int32_t v) const;
-    // The region of surface face (a, b, c): the region all three touch,
-    // the nearest by shape when several do; -1 if none.
+    // The region of surface face (a, b, c): the region all three touch; for
+    // a face with no vertex inside a region, its region as extracted, else
+    // the nearest by shape of those they all touch; -1 if none.
     int32_t face_region(int32_t a, int32_t b, int32_t c, const Vec3& centroid) const;
     // The shape a vertex moves on: its region's or chain's; nullptr for
     // corners, fixed and interior vertices.
@@ -91,14 +92,25 @@ public:
     int32_t resolve(const EditableMesh& mesh, int32_t v) const;
     // Records v's entity (growing the arrays for a made vertex).
     void set(int32_t v, VertexClass cls, int32_t entity);
+    // Forgets the vertices from `n` on (made by changes that were not kept).
+    void truncate(int32_t n) {
+        if (n < num_vertices()) {
+            cls_.resize(static_cast<size_t>(n));
+            entity_.resize(static_cast<size_t>(n));
+        }
+    }
 
 private:
     std::vector<SurfaceRegion> regions_;
     std::vector<SharpChain> chains_;
     std::vector<VertexClass> cls_;
     std::vector<int32_t> entity_;
-    std::unordered_map<int32_t, std::vector<int32_t>> corner_regions_;  // regions around each corner
-    std::unordered_map<int32_t, std::vector<int32_t>> corner_chains_;   // chains ending at each corner
+    // Corners and fixed vertices: the regions around them, the chains at them.
+    std::unordered_map<int32_t, std::vector<int32_t>> corner_regions_;
+    std::unordered_map<int32_t, std::vector<int32_t>> corner_chains_;
+    // Faces with no vertex inside a region (all on chains, at corners or
+    // fixed): their region as extracted, which their vertices cannot tell.
+    std::unordered_map<FaceKey, int32_t, FaceKeyHash> rim_faces_;
     EdgeSet sharp_;
 };
 

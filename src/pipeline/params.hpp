@@ -26,7 +26,7 @@ struct Params {
     double odt_step = 1.0;         // BODT_PARAM_ODT_STEP (alpha, paper 002 eq. 3.4)
     double density_split = 2.0 / 3.0;   // BODT_PARAM_DENSITY_SPLIT (gamma, sec. 3.5.1)
     double density_collapse = 1.5;      // BODT_PARAM_DENSITY_COLLAPSE (delta)
-    double fit_tolerance = 1e-3;   // BODT_PARAM_FIT_TOLERANCE
+    double fit_tolerance = 1e-5;   // BODT_PARAM_FIT_TOLERANCE
 };
 
 // Each throws Error(BODT_ERR_INVALID_ARGUMENT) for an unknown key, a key of

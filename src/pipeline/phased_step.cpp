@@ -179,6 +179,8 @@ void Improver::step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& 
         if (counts.changed()) {
             write_back(editable, mesh, surfaces, geometry);
             classes_valid_ = false;
+        } else {
+            geometry.truncate(mesh.num_vertices());
         }
         report.vertices_inserted += counts.splits + counts.degenerate_removed;
         report.edges_collapsed += counts.collapses + counts.inverted_removed + counts.degenerate_removed;
@@ -201,6 +203,8 @@ void Improver::step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& 
         if (flips > 0) {
             write_back(editable, mesh, surfaces, geometry);
             classes_valid_ = false;
+        } else {
+            geometry.truncate(mesh.num_vertices());
         }
         report.flips += flips;
     }

@@ -1,7 +1,11 @@
 #include "topology/editable_mesh.hpp"
 
+#include "bodt.h"
+#include "common/error.hpp"
+
 #include <algorithm>
 #include <climits>
+#include <string>
 
 namespace bodt {
 
@@ -34,6 +38,9 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
       caller_features_(mesh.feature_edges),
       features_(classes.feature_edges),
       input_vertices_(mesh.num_input_vertices()) {
+    if (cls_.size() != points_.size())
+        throw Error(BODT_ERR_NUMERIC, "internal error: " + std::to_string(cls_.size()) + " vertex classes for " +
+                                          std::to_string(points_.size()) + " vertices");
     fixed_.resize(points_.size());
     for (size_t v = 0; v < points_.size(); ++v) fixed_[v] = mesh.vflags[v] & kFixed;
     features_.insert(caller_features_.begin(), caller_features_.end());

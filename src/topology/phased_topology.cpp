@@ -210,8 +210,10 @@ int32_t PhasedTopology::collapse_by_rules(int32_t a, int32_t b) {
     const std::vector<int32_t> around = tets_around(mesh_, {a, b});
     const double must_exceed = std::min(worst_sine(mesh_, around), std::sin(settings_.bad_angle_deg * kDegree));
     const size_t mark = mesh_.checkpoint();
-    if (ra != rb) {
-        const int32_t keep = ra > rb ? a : b, gone = ra > rb ? b : a;
+    // Two surface or chain vertices meet at their midpoint only on a fitted
+    // shape (the midpoint then goes onto it); elsewhere b stays where it is.
+    if (ra != rb || (ra >= 1 && !geometry_.shape_of(b))) {
+        const int32_t keep = ra >= rb ? a : b, gone = ra >= rb ? b : a;
         if (collapse_half_edge(mesh_, gone, keep, settings_.rules, must_exceed) && accurate_at(keep)) return keep;
         mesh_.rollback(mark);
         return -1;
