@@ -196,6 +196,7 @@ void Improver::step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& 
         inside.rules.surface_may_change = false;
         inside.rules.min_stretch = params_.min_stretch;
         inside.rules.delaunay = true;
+        inside.flip_angle_deg = 90.0;  // sec. 3.4.4: every tet that is not Delaunay
         inside.flip = true;
         inside.insert = inside.collapse = false;
         flips += improve_topology(editable, inside).flips;

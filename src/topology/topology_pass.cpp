@@ -12,8 +12,6 @@ namespace bodt {
 namespace {
 
 constexpr double kDegree = M_PI / 180.0;
-// Flips look at tets with an angle outside [30, 150] degrees.
-const double kFlipBelowSine = std::sin(30.0 * kDegree);
 // A change must raise the worst sine by more than round-off.
 constexpr double kGain = 1e-12;
 // ODT relocation is one fixed-point step per round: a few rounds let the
@@ -83,15 +81,33 @@ bool flip_around(EditableMesh& mesh, int32_t t, const TopologyRules& rules) {
     return false;
 }
 
-// One sweep over the tets; the tets a flip makes are appended, so the
-// sweep reaches them too and goes on until no bad tet it meets can flip.
-// Every flip raises a local minimum, so this ends; the cap only bounds the
-// time on a pathological mesh.
-int32_t flip_pass(EditableMesh& mesh, const TopologyRules& rules) {
+// No vertex of a face neighbour of t lies inside t's circumsphere.
+bool locally_delaunay(const EditableMesh& mesh, int32_t t) {
+    const Tet& q = mesh.tet(t);
+    const TetPoints p = mesh.tet_points(t);
+    for (const auto& f : kFaceVertex) {
+        int32_t pair[2];
+        const int n = mesh.face_tets(FaceKey::of(q[f[0]], q[f[1]], q[f[2]]), pair);
+        for (int k = 0; k < n; ++k)
+            for (int32_t x : mesh.tet(pair[k]))
+                if (std::find(q.begin(), q.end(), x) == q.end() && in_circumsphere(p, mesh.point(x))) return false;
+    }
+    return true;
+}
+
+// One sweep over the tets with an angle outside [flip angle, 180 - it]
+// (with the Delaunay rule, only those that are not Delaunay: every flip
+// must replace one); the tets a flip makes are appended, so the sweep
+// reaches them too and goes on until no bad tet it meets can flip.  Every
+// flip raises a local minimum, so this ends; the cap only bounds the time
+// on a pathological mesh.
+int32_t flip_pass(EditableMesh& mesh, const TopologyRules& rules, double flip_angle_deg) {
+    const double below = std::sin(flip_angle_deg * kDegree);
     int32_t flips = 0;
     const int32_t cap = 2 * mesh.tet_capacity();
     for (int32_t t = 0; t < mesh.tet_capacity() && flips < cap; ++t) {
-        if (!mesh.alive(t) || min_dihedral_sine(mesh.tet_points(t)) >= kFlipBelowSine) continue;
+        if (!mesh.alive(t) || min_dihedral_sine(mesh.tet_points(t)) >= below) continue;
+        if (rules.delaunay && locally_delaunay(mesh, t)) continue;
         flips += flip_around(mesh, t, rules);
     }
     return flips;
@@ -300,7 +316,7 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s) {
     TopologyRules loose = s.rules;
     loose.never_worse = false;
     const double bad_sine = std::sin(s.bad_angle_deg * kDegree);
-    if (s.flip) counts.flips += flip_pass(mesh, s.rules);
+    if (s.flip) counts.flips += flip_pass(mesh, s.rules, s.flip_angle_deg);
     if (s.swap_all_boundary) counts.flips += all_boundary_pass(mesh, s, loose);
     if (s.insert || s.collapse) {
         for (int32_t t : bad_tets_by_quality(mesh, bad_sine)) {
@@ -330,7 +346,7 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s) {
                     ++counts.collapsed;
             }
         }
-        if (s.flip && counts.inserted + counts.collapsed > 0) counts.flips += flip_pass(mesh, s.rules);
+        if (s.flip && counts.inserted + counts.collapsed > 0) counts.flips += flip_pass(mesh, s.rules, s.flip_angle_deg);
     }
     mesh.commit();
     return counts;

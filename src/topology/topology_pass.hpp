@@ -20,6 +20,7 @@ using RelocationTarget = std::function<bool(const EditableMesh& mesh, int32_t v,
 struct TopologySettings {
     TopologyRules rules;
     double bad_angle_deg = 15.0;  // insertion and collapse work on tets with an angle outside [this, 180 - this]
+    double flip_angle_deg = 30.0; // flips work around tets with an angle outside [this, 180 - this]
     bool flip = true, insert = true, collapse = false;
     // Paper 001 Algorithm 4: flips around poor tets (stretch below
     // poor_stretch) whose four vertices all stay put (not Interior), judged
