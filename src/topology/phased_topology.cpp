@@ -139,10 +139,11 @@ bool PhasedTopology::accurate_at(int32_t v) const {
 // rounds, the star kept positive), as the smoothing after the split would.
 // Kept if no tet around is worse than the worse of the bad angle and the
 // tets it replaced.
-int32_t PhasedTopology::split_onto_shape(int32_t a, int32_t b) {
+int32_t PhasedTopology::split_onto_shape(int32_t a, int32_t b, bool judged_after) {
     const size_t mark = mesh_.checkpoint();
     const std::vector<int32_t> around = mesh_.tets_holding({a, b});
-    const double must_exceed = std::min(worst_sine(mesh_, around), std::sin(settings_.bad_angle_deg * kDegree));
+    const double must_exceed =
+        judged_after ? 0.0 : std::min(worst_sine(mesh_, around), std::sin(settings_.bad_angle_deg * kDegree));
     const TetLimits limits = limits_for(mesh_, around, settings_.rules, must_exceed);
     const int32_t m = split_edge(mesh_, a, b, 0.5 * (mesh_.point(a) + mesh_.point(b)), settings_.rules, 0.0);
     if (m < 0) return -1;
@@ -314,8 +315,8 @@ int32_t PhasedTopology::remove_degenerate() {
         int32_t kept = -1;
         if (kind.kind == BadTetKind::Sliver) {
             // The two crossing edges split, the new short edge collapsed.
-            const int32_t m1 = split_onto_shape(q[kind.edge[0]], q[kind.edge[1]]);
-            const int32_t m2 = m1 < 0 ? -1 : split_onto_shape(q[kind.edge2[0]], q[kind.edge2[1]]);
+            const int32_t m1 = split_onto_shape(q[kind.edge[0]], q[kind.edge[1]], true);
+            const int32_t m2 = m1 < 0 ? -1 : split_onto_shape(q[kind.edge2[0]], q[kind.edge2[1]], true);
             if (m2 >= 0 && is_edge(mesh_, m1, m2)) kept = collapse_by_rules(m1, m2);
         } else if (kind.kind == BadTetKind::Cap || kind.kind == BadTetKind::Spade) {
             // The edge between the largest and the smallest face is split;
@@ -330,7 +331,7 @@ int32_t PhasedTopology::remove_degenerate() {
                 for (int i = 0; i < 4; ++i)
                     if (i != large && i != small) e[k++] = i;
                 const int32_t apex = q[large];  // in the smallest face, off the edge
-                const int32_t m = split_onto_shape(q[e[0]], q[e[1]]);
+                const int32_t m = split_onto_shape(q[e[0]], q[e[1]], true);
                 if (m >= 0 && is_edge(mesh_, m, apex)) kept = collapse_by_rules(m, apex);
             }
         }
@@ -396,7 +397,7 @@ int32_t PhasedTopology::flip_surface() {
         const std::vector<int32_t> region = tets_around(mesh_, {a, b, c, d});
         const double before = worst_sine(mesh_, region);
         const size_t mark = mesh_.checkpoint();
-        const int32_t m = split_onto_shape(a, b);
+        const int32_t m = split_onto_shape(a, b, true);
         bool done = false;
         for (int32_t to : {c, d}) {
             if (done || m < 0) break;

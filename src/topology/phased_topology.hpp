@@ -50,7 +50,9 @@ public:
     int32_t flip_surface();
 
 private:
-    int32_t split_onto_shape(int32_t a, int32_t b);
+    // `judged_after`: part of a larger change judged as a whole (degenerate
+    // removal, surface flips), so only held to validity here.
+    int32_t split_onto_shape(int32_t a, int32_t b, bool judged_after = false);
     int32_t collapse_by_rules(int32_t a, int32_t b);
     bool on_shape(std::initializer_list<int32_t> element, const Vec3& x) const;
     // Every surface edge at v on a cylinder is within the region's
