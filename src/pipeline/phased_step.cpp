@@ -172,11 +172,12 @@ void Improver::step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& 
         EditableMesh editable(ordered, geometry.vertex_classes());
         PhasedTopology topology(editable, geometry, settings);
         PhasedTopologyCounts counts;
+        counts.untangling_moves = topology.untangle_by_moves();
         if (settings.collapse) counts.inverted_removed = topology.remove_inverted();
         if (settings.split && settings.collapse) counts.degenerate_removed = topology.remove_degenerate();
         topology.recover(density_.empty() ? nullptr : &density_, counts);
         editable.commit();
-        if (counts.changed()) {
+        if (counts.changed() || counts.untangling_moves > 0) {
             write_back(editable, mesh, surfaces, geometry);
             classes_valid_ = false;
         } else {
@@ -184,6 +185,7 @@ void Improver::step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& 
         }
         report.vertices_inserted += counts.splits + counts.degenerate_removed;
         report.edges_collapsed += counts.collapses + counts.inverted_removed + counts.degenerate_removed;
+        report.vertices_moved += counts.untangling_moves;
     }
     if (bits & BODT_OP_SMOOTH) sweep_phased(mesh, report);
     if (settings.flip) {

@@ -234,22 +234,173 @@ int32_t PhasedTopology::collapse_by_rules(int32_t a, int32_t b) {
     return -1;
 }
 
+namespace {
+
+// How bad a set of tets is: how many are not positive, then the worst
+// stretch (negated, so that smaller is better in both).
+std::pair<int32_t, double> badness(const EditableMesh& mesh, const std::vector<int32_t>& tets) {
+    int32_t count = 0;
+    double worst = std::numeric_limits<double>::infinity();
+    for (int32_t t : tets) {
+        if (!mesh.alive(t)) continue;
+        const double s = stretch(mesh.tet_points(t));
+        count += s <= 0.0;
+        worst = std::min(worst, s);
+    }
+    return {count, -worst};
+}
+
+// A point where every tet of v's star would be positive: each tet asks x
+// to lie on the inner side of the plane of its face opposite v.  The most
+// violated of those half-spaces is met in turn (a relaxation method for
+// linear inequalities, Agmon / Motzkin), aiming at a margin of a tenth of
+// the star's shortest edge so the point lies inside, not on, the kernel.
+// False when it does not get there.
+bool star_kernel_point(const EditableMesh& mesh, int32_t v, Vec3& x) {
+    struct Half {
+        Vec3 n;  // unit, pointing into the tet's side
+        Vec3 a;
+    };
+    std::vector<Half> halves;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int32_t t : mesh.tets_of(v)) {
+        const Tet& q = mesh.tet(t);
+        int i = 0;
+        while (q[i] != v) ++i;
+        const Vec3 &a = mesh.point(q[kFaceVertex[i][0]]), &b = mesh.point(q[kFaceVertex[i][1]]),
+                   &c = mesh.point(q[kFaceVertex[i][2]]);
+        const Vec3 n = -triangle_normal(a, b, c);  // the face's outward normal, reversed
+        const double len = n.norm();
+        if (!(len > 0.0)) return false;
+        halves.push_back({n / len, a});
+        shortest = std::min({shortest, (b - a).norm(), (c - b).norm(), (a - c).norm()});
+    }
+    const double margin = 0.1 * shortest;
+    x = mesh.point(v);
+    for (int iteration = 0; iteration < 200; ++iteration) {
+        const Half* worst = nullptr;
+        double lowest = margin;
+        for (const Half& h : halves) {
+            const double d = h.n.dot(x - h.a);
+            if (d < lowest) {
+                lowest = d;
+                worst = &h;
+            }
+        }
+        if (!worst) return true;
+        x += (margin - lowest) * worst->n;
+    }
+    return false;
+}
+
+// The interior vertices within `rings` rings of a tet with stretch <= 0
+// relax together towards the mean of their neighbours (Jacobi sweeps, the
+// rest held): a deformation that moved a boundary far past the vertices
+// inside it is undone as a whole, which no single vertex's move can do.
+// Kept only if fewer tets are left with stretch <= 0 (or as many, better).
+bool relax_tangled_region(EditableMesh& mesh, int rings, int sweeps) {
+    std::vector<int32_t> region;
+    std::vector<char> in(static_cast<size_t>(mesh.num_vertices()), 0);
+    std::vector<int32_t> bad_tets;
+    for (int32_t t = 0; t < mesh.tet_capacity(); ++t)
+        if (mesh.alive(t) && stretch(mesh.tet_points(t)) <= 0.0) {
+            bad_tets.push_back(t);
+            for (int32_t v : mesh.tet(t))
+                if (!in[v]) {
+                    in[v] = 1;
+                    region.push_back(v);
+                }
+        }
+    if (bad_tets.empty()) return false;
+    std::vector<int32_t> around;
+    for (int ring = 0; ring < rings; ++ring)
+        for (size_t k = 0, n = region.size(); k < n; ++k) {
+            mesh.neighbors(region[k], around);
+            for (int32_t u : around)
+                if (!in[u]) {
+                    in[u] = 1;
+                    region.push_back(u);
+                }
+        }
+    std::vector<int32_t> movers, touched;
+    for (int32_t v : region) {
+        if (mesh.vertex_class(v) == VertexClass::Interior) movers.push_back(v);
+        touched.insert(touched.end(), mesh.tets_of(v).begin(), mesh.tets_of(v).end());
+    }
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    const auto before = badness(mesh, touched);
+    const size_t mark = mesh.checkpoint();
+    std::vector<Vec3> next(movers.size());
+    for (int sweep = 0; sweep < sweeps; ++sweep) {
+        for (size_t k = 0; k < movers.size(); ++k) {
+            mesh.neighbors(movers[k], around);
+            Vec3 mean = Vec3::Zero();
+            for (int32_t u : around) mean += mesh.point(u);
+            next[k] = mean / static_cast<double>(around.size());
+        }
+        for (size_t k = 0; k < movers.size(); ++k) mesh.move_vertex(movers[k], next[k]);
+    }
+    if (badness(mesh, touched) < before) return true;
+    mesh.rollback(mark);
+    return false;
+}
+
+}  // namespace
+
+int32_t PhasedTopology::untangle_by_moves() {
+    constexpr int kRounds = 50;
+    int32_t moves = 0;
+    for (int rings : {1, 2, 4})
+        if (relax_tangled_region(mesh_, rings, 10 * rings)) ++moves;
+    std::vector<int32_t> around;
+    for (int round = 0; round < kRounds; ++round) {
+        int32_t moved = 0;
+        for (int32_t v = 0; v < mesh_.num_vertices(); ++v) {
+            // Interior vertices anywhere; surface and chain vertices on their
+            // fitted shape, towards their neighbours on it.
+            const VertexClass cls = mesh_.vertex_class(v);
+            const Shape* shape = v < geometry_.num_vertices() ? geometry_.shape_of(v) : nullptr;
+            if (mesh_.tets_of(v).empty() || (cls != VertexClass::Interior && !shape)) continue;
+            const std::vector<int32_t> star = mesh_.tets_of(v);
+            const auto before = badness(mesh_, star);
+            if (before.first == 0) continue;
+            mesh_.neighbors(v, around);
+            Vec3 mean = Vec3::Zero();
+            int n = 0;
+            for (int32_t u : around) {
+                const bool along = cls == VertexClass::Interior ||
+                                   (cls == VertexClass::FeatureLine ? mesh_.is_feature_edge(v, u) : mesh_.is_surface_edge(v, u));
+                if (!along) continue;
+                mean += mesh_.point(u);
+                ++n;
+            }
+            if (n == 0) continue;
+            mean /= static_cast<double>(n);
+            const Vec3 start = mesh_.point(v);
+            bool kept = false;
+            Vec3 inside;
+            if (cls == VertexClass::Interior && star_kernel_point(mesh_, v, inside)) {
+                mesh_.move_vertex(v, inside);
+                kept = badness(mesh_, star) < before;
+            }
+            for (double f = 1.0; f > 0.1 && !kept; f *= 0.5) {
+                const Vec3 to = start + f * (mean - start);
+                mesh_.move_vertex(v, shape ? shape->project(to) : to);
+                kept = badness(mesh_, star) < before;
+            }
+            if (!kept) mesh_.move_vertex(v, start);
+            moved += kept;
+        }
+        moves += moved;
+        if (moved == 0) break;
+    }
+    return moves;
+}
+
 int32_t PhasedTopology::remove_inverted() {
     TopologyRules untangle = settings_.rules;
     untangle.allow_inverted = true;
-    // How bad a set of tets is: how many are not positive, then the worst
-    // stretch (negated, so that smaller is better in both).
-    const auto badness = [this](const std::vector<int32_t>& tets) {
-        int32_t count = 0;
-        double worst = std::numeric_limits<double>::infinity();
-        for (int32_t t : tets) {
-            if (!mesh_.alive(t)) continue;
-            const double s = stretch(mesh_.tet_points(t));
-            count += s <= 0.0;
-            worst = std::min(worst, s);
-        }
-        return std::pair<int32_t, double>{count, -worst};
-    };
     // Worst first; the tets a collapse leaves bad join the queue.
     using Entry = std::pair<double, int32_t>;
     std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
@@ -272,10 +423,10 @@ int32_t PhasedTopology::remove_inverted() {
         for (const auto& e : kEdgeVertex)
             for (int dir = 0; dir < 2; ++dir) {
                 const int32_t gone = q[e[dir]], keep = q[e[1 - dir]];
-                const auto before = badness(tets_around(mesh_, {gone, keep}));
+                const auto before = badness(mesh_, tets_around(mesh_, {gone, keep}));
                 const size_t mark = mesh_.checkpoint();
                 if (collapse_half_edge(mesh_, gone, keep, untangle, 0.0)) {
-                    const auto after = badness(mesh_.tets_of(keep));
+                    const auto after = badness(mesh_, mesh_.tets_of(keep));
                     if (after < before && after < best) {
                         best = after;
                         best_gone = gone;
@@ -350,6 +501,15 @@ int32_t PhasedTopology::remove_degenerate() {
 
 void PhasedTopology::recover(const DensityGrid* density, PhasedTopologyCounts& counts) {
     if (!settings_.split && !settings_.collapse) return;
+    double worst = std::numeric_limits<double>::infinity();
+    for (int32_t t = 0; t < mesh_.tet_capacity(); ++t)
+        if (mesh_.alive(t)) worst = std::min(worst, stretch(mesh_.tet_points(t)));
+    if (!(worst > 0.0)) return;
+    // A recovery change may cost the worst tet what one midpoint split of
+    // a regular tet costs its halves (stretch 1 -> 0.71), no more.
+    constexpr double kSplitLoss = 0.7;
+    const double floor = settings_.rules.min_stretch;
+    settings_.rules.min_stretch = std::max(floor, kSplitLoss * worst);
     // Geometric accuracy: surface edges of a cylinder too far from it.
     if (settings_.split) {
         for (const auto& [a, b] : surface_edges(mesh_)) {
@@ -368,7 +528,10 @@ void PhasedTopology::recover(const DensityGrid* density, PhasedTopologyCounts& c
             if (std::isfinite(limit) && split_onto_shape(a, b) >= 0) ++counts.splits;
         }
     }
-    if (!density || density->empty()) return;
+    if (!density || density->empty()) {
+        settings_.rules.min_stretch = floor;
+        return;
+    }
     // Density: split sparse edges, collapse dense ones.
     for (const auto& [a, b] : all_edges(mesh_)) {
         if (mesh_.tets_of(a).empty() || mesh_.tets_of(b).empty() || !is_edge(mesh_, a, b)) continue;
@@ -382,6 +545,7 @@ void PhasedTopology::recover(const DensityGrid* density, PhasedTopologyCounts& c
             if (collapse_by_rules(a, b) >= 0) ++counts.collapses;
         }
     }
+    settings_.rules.min_stretch = floor;
 }
 
 int32_t PhasedTopology::flip_surface() {

@@ -22,6 +22,7 @@ struct PhasedTopologySettings {
 };
 
 struct PhasedTopologyCounts {
+    int32_t untangling_moves = 0;   // vertex moves before them
     int32_t inverted_removed = 0;   // half-edge collapses (sec. 3.5.3)
     int32_t degenerate_removed = 0; // split + collapse (sec. 3.5.2)
     int32_t splits = 0, collapses = 0;  // density and geometric recovery (sec. 3.5.1)
@@ -33,6 +34,14 @@ class PhasedTopology {
 public:
     PhasedTopology(EditableMesh& mesh, GeometryModel& geometry, const PhasedTopologySettings& settings);
 
+    // Before sec. 3.5.3: the vertices of tets with stretch <= 0 moved into
+    // the kernel of their star (interior ones, when it has one) or to the
+    // mean of their neighbours (surface and chain vertices: of those on
+    // their region or chain, then onto its fitted shape), each move kept
+    // only if it leaves fewer such tets around the vertex (or as many,
+    // better): what a deformation left behind its moved boundary is pulled
+    // back without losing vertices.  Returns the moves kept.
+    int32_t untangle_by_moves();
     // Sec. 3.5.3: while a tet has stretch <= 0, the half-edge collapse of one
     // of the worst tet's edges that leaves the best worst stretch around the
     // kept vertex, if that beats the worst before.
@@ -43,7 +52,9 @@ public:
     int32_t remove_degenerate();
     // Sec. 3.5.1: surface edges of a cylinder further from it than the
     // region's acceptable error are split onto it; edges are split where
-    // 1/|e| < gamma rho' and collapsed where 1/|e| > delta rho'.
+    // 1/|e| < gamma rho' and collapsed where 1/|e| > delta rho'.  Only on
+    // a mesh without inverted or flat tets, and no tet made is below 0.7
+    // times the mesh's worst stretch (or the tets it replaces).
     void recover(const DensityGrid* density, PhasedTopologyCounts& counts);
     // Sec. 3.4.3: surface edges that are not locally Delaunay flipped by a
     // split and the collapse of the new vertex into an opposite one.

@@ -274,10 +274,15 @@ def write_jittered_box(path, n, size, jitter, seed):
             break
     else:
         raise RuntimeError("no seed gave a valid jittered box")
+    write_medit(path, pts, tets)
+
+
+def write_medit(path, pts, tets):
+    """A Medit .mesh with vertices and tets (0-based in, 1-based in the file)."""
     with open(path, "w") as f:
         f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % len(pts))
         for p in pts:
-            f.write("%.17g %.17g %.17g 0\n" % p)
+            f.write("%.17g %.17g %.17g 0\n" % tuple(p))
         f.write("Tetrahedra\n%d\n" % len(tets))
         for t in tets:
             f.write("%d %d %d %d 1\n" % tuple(v + 1 for v in t))
@@ -485,14 +490,7 @@ def case_improve_phased(args):
     pts, tets = read_medit(src)
     moved = [(1.2 if p[0] == 2.0 else p[0], p[1], p[2]) for p in pts]
     deformed = os.path.join(args.out, "box4_ph_deformed.mesh")
-    with open(deformed, "w") as f:
-        f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % len(moved))
-        for p in moved:
-            f.write("%.17g %.17g %.17g 0\n" % p)
-        f.write("Tetrahedra\n%d\n" % len(tets))
-        for t in tets:
-            f.write("%d %d %d %d 1\n" % tuple(v + 1 for v in t))
-        f.write("End\n")
+    write_medit(deformed, moved, tets)
     inverted = sum(1 for t in tets if dot(sub(moved[t[1]], moved[t[0]]),
                                           cross(sub(moved[t[2]], moved[t[0]]), sub(moved[t[3]], moved[t[0]]))) <= 0)
     check(inverted > 0, "the deformation inverted no tet")
