@@ -20,15 +20,11 @@
 
 #include "bodt.h"
 
+#include "bench_util.hpp"
 #include "cases.hpp"
 #include "surface_distance.hpp"
 
-#include <fcntl.h>
-#include <ftw.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -36,7 +32,6 @@
 #include <chrono>
 #include <cinttypes>
 #include <cmath>
-#include <csignal>
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
@@ -45,7 +40,6 @@
 #include <map>
 #include <regex>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #ifndef BODT_BENCH_DEFAULT_SHARED
@@ -55,6 +49,10 @@
 namespace {
 
 using bench::Case;
+using bench::errmsg;
+using bench::fmt;
+using bench::json_num;
+using bench::json_str;
 using bench::PreparedMesh;
 
 // A variant: a mode (by value) and the operations of a step (BODT_PARAM_OPS;
@@ -518,11 +516,6 @@ RunResult empty_result() {
 
 // ----------------------------------------------------------- one run
 
-struct MeshHolder {
-    bodt_mesh* m = nullptr;
-    ~MeshHolder() { bodt_mesh_destroy(m); }
-};
-
 // Quality, counts and boundary surface of the mesh as it is now.
 // Returns BODT_OK or the status of the call named in where.
 int measure(const bodt_mesh* m, Stats& s, bench::Surface& surf, std::vector<int32_t>& tets, int index_base,
@@ -533,9 +526,7 @@ int measure(const bodt_mesh* m, Stats& s, bench::Surface& surf, std::vector<int3
     s.vertices = nv;
     s.tets = nt;
     s.lib_boundary_faces = nb;
-    bodt_quality q;
-    std::memset(&q, 0, sizeof q);
-    q.size = sizeof q;
+    bodt_quality q = bench::sized_struct<bodt_quality>();
     if ((st = bodt_mesh_quality(m, &q)) != BODT_OK) return where = "bodt_mesh_quality", st;
     s.inverted = q.num_inverted;
     s.unused = q.num_unused_vertices;
@@ -581,11 +572,6 @@ int region_volumes(const bodt_mesh* m, std::map<int32_t, double>& out, std::stri
     return BODT_OK;
 }
 
-std::string errmsg(const bodt_mesh* m, int status) {
-    const char* e = bodt_mesh_last_error(m);
-    return std::string(bodt_status_string(status)) + (e && *e ? std::string(": ") + e : std::string());
-}
-
 RunResult run_one(const Case& c, const PreparedMesh& pm, const Variant& var, const Options& opt) {
     RunResult r = empty_result();
     auto fail = [&](const char* status, const std::string& where, const std::string& msg) {
@@ -597,7 +583,7 @@ RunResult run_one(const Case& c, const PreparedMesh& pm, const Variant& var, con
         return r;
     };
 
-    MeshHolder mh;
+    bench::MeshHandle mh;
     int st;
     int index_base = 0;
     if (pm.from_file) {
@@ -682,9 +668,7 @@ RunResult run_one(const Case& c, const PreparedMesh& pm, const Variant& var, con
     std::string step_where, step_msg;
     const auto t0 = std::chrono::steady_clock::now();
     for (int i = 0; i < opt.iterations; ++i) {
-        bodt_step_report rep;
-        std::memset(&rep, 0, sizeof rep);
-        rep.size = sizeof rep;
+        bodt_step_report rep = bench::sized_struct<bodt_step_report>();
         st = bodt_step(mh.m, &rep);
         if (st != BODT_OK) {
             step_failed = true;
@@ -742,122 +726,24 @@ RunResult run_one(const Case& c, const PreparedMesh& pm, const Variant& var, con
     return r;
 }
 
-bool write_all(int fd, const void* p, size_t n) {
-    const char* c = static_cast<const char*>(p);
-    while (n > 0) {
-        const ssize_t w = write(fd, c, n);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) return false;
-        c += w;
-        n -= size_t(w);
-    }
-    return true;
-}
-
-size_t read_all(int fd, void* p, size_t n) {
-    char* c = static_cast<char*>(p);
-    size_t got = 0;
-    while (got < n) {
-        const ssize_t r = read(fd, c + got, n - got);
-        if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) break;
-        got += size_t(r);
-    }
-    return got;
-}
-
 // Runs run_one in a forked child (so a crash or hang is contained) and takes
 // the peak RSS of that child.
 RunResult run_isolated(const Case& c, const PreparedMesh& pm, const Variant& var, const Options& opt) {
-    if (!opt.fork_runs) {
-        RunResult r = run_one(c, pm, var, opt);
-        struct rusage ru;
-        getrusage(RUSAGE_SELF, &ru);
-        r.peak_rss_mb = double(ru.ru_maxrss) / 1024.0;
-        return r;
-    }
-    int fds[2];
-    if (pipe(fds) != 0) {
-        RunResult r = empty_result();
-        SET(r.status, "error");
-        SET(r.where, "pipe");
-        SET(r.message, std::strerror(errno));
-        return r;
-    }
-    std::fflush(stdout);
-    std::fflush(stderr);
-    const pid_t pid = fork();
-    if (pid == 0) {
-        close(fds[0]);
-        if (opt.timeout_s > 0) alarm(unsigned(opt.timeout_s));
-        const RunResult r = run_one(c, pm, var, opt);
-        const bool ok = write_all(fds[1], &r, sizeof r);
-        std::fflush(stderr);
-        _exit(ok ? 0 : 3);
-    }
-    close(fds[1]);
     RunResult r = empty_result();
-    if (pid < 0) {
-        close(fds[0]);
-        SET(r.status, "error");
-        SET(r.where, "fork");
-        SET(r.message, std::strerror(errno));
-        return r;
+    const bench::ChildRun child =
+        bench::run_isolated(r, opt.fork_runs, opt.timeout_s, [&] { return run_one(c, pm, var, opt); });
+    if (!child.ok) {
+        SET(r.status, child.status);
+        SET(r.where, child.where);
+        SET(r.message, child.message);
+        if (child.status != "error")  // the child died; pipe and fork failures are only recorded
+            std::fprintf(stderr, "bodt_bench: %s / %s: %s\n", c.name.c_str(), var.name.c_str(), r.message);
     }
-    RunResult got = empty_result();
-    const size_t n = read_all(fds[0], &got, sizeof got);
-    close(fds[0]);
-    int wst = 0;
-    struct rusage ru;
-    std::memset(&ru, 0, sizeof ru);
-    while (wait4(pid, &wst, 0, &ru) < 0 && errno == EINTR) {
-    }
-    if (n == sizeof got) {
-        r = got;
-    } else if (WIFSIGNALED(wst)) {
-        const int sig = WTERMSIG(wst);
-        SET(r.status, sig == SIGALRM ? "timeout" : "crashed");
-        SET(r.where, "child process");
-        SET(r.message, sig == SIGALRM ? "no result after " + std::to_string(opt.timeout_s) + " s"
-                                      : std::string("killed by signal ") + std::to_string(sig) + " (" +
-                                            strsignal(sig) + ")");
-        std::fprintf(stderr, "bodt_bench: %s / %s: %s\n", c.name.c_str(), var.name.c_str(), r.message);
-    } else {
-        SET(r.status, "crashed");
-        SET(r.where, "child process");
-        SET(r.message, "child exited with status " + std::to_string(WIFEXITED(wst) ? WEXITSTATUS(wst) : -1) +
-                           " without a result");
-        std::fprintf(stderr, "bodt_bench: %s / %s: %s\n", c.name.c_str(), var.name.c_str(), r.message);
-    }
-    r.peak_rss_mb = double(ru.ru_maxrss) / 1024.0;
+    r.peak_rss_mb = child.peak_rss_mb;
     return r;
 }
 
 // ------------------------------------------------------------------ output
-
-std::string json_str(const std::string& s) {
-    std::string o = "\"";
-    for (unsigned char ch : s) {
-        if (ch == '"' || ch == '\\') {
-            o += '\\';
-            o += char(ch);
-        } else if (ch < 0x20) {
-            char b[8];
-            std::snprintf(b, sizeof b, "\\u%04x", ch);
-            o += b;
-        } else {
-            o += char(ch);
-        }
-    }
-    return o + "\"";
-}
-
-std::string json_num(double v, const char* fmt = "%.6g") {
-    if (!std::isfinite(v)) return "null";
-    char b[64];
-    std::snprintf(b, sizeof b, fmt, v);
-    return b;
-}
 
 double pct_30_140(const Stats& s) { return s.tets > 0 ? 100.0 * s.in30_140 / s.tets : NAN; }
 
@@ -964,26 +850,12 @@ std::string result_json(const Case& c, const std::string& note, const Variant& v
     return o + "}";
 }
 
-static_assert(std::is_trivially_copyable<RunResult>::value, "RunResult goes through a pipe");
-
 struct Row {
     const Case* c;
     std::string note;
     std::string prep_error;
     std::vector<RunResult> runs;  // one per variant, in opt.variants order
 };
-
-std::string fmt(const char* f, ...) {
-    va_list ap, ap2;
-    va_start(ap, f);
-    va_copy(ap2, ap);
-    const int n = std::vsnprintf(nullptr, 0, f, ap);
-    va_end(ap);
-    std::string b(n > 0 ? size_t(n) : 0, '\0');
-    if (n > 0) std::vsnprintf(&b[0], size_t(n) + 1, f, ap2);
-    va_end(ap2);
-    return b;
-}
 
 std::string pct_cell(double h) {
     return !std::isfinite(h) ? "–" : (h == 0 ? "0" : fmt("%.3g", h));
@@ -1273,10 +1145,6 @@ std::string markdown(const std::vector<Row>& rows, const Options& opt, const std
     return md;
 }
 
-// ------------------------------------------------------------------ temp dir
-
-int rm_entry(const char* path, const struct stat*, int, struct FTW*) { return remove(path); }
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -1290,26 +1158,19 @@ int main(int argc, char** argv) {
     }
     if (!opt.write_dir.empty()) {
         mkdir(opt.write_dir.c_str(), 0777);
-        struct stat sb;
-        if (stat(opt.write_dir.c_str(), &sb) != 0 || !S_ISDIR(sb.st_mode))
+        if (!bench::is_dir(opt.write_dir))
             usage_error("cannot create --write-dir %s", opt.write_dir.c_str());
     }
 
-    const char* tmp_root = std::getenv("TMPDIR");
-    std::string tmpl = std::string(tmp_root && *tmp_root ? tmp_root : "/tmp") + "/bodt-bench-XXXXXX";
-    std::vector<char> tbuf(tmpl.begin(), tmpl.end());
-    tbuf.push_back('\0');
-    const char* tdir = mkdtemp(tbuf.data());
-    if (!tdir) {
-        std::fprintf(stderr, "bodt_bench: cannot make a temp dir %s: %s\n", tmpl.c_str(), std::strerror(errno));
+    std::string temp_dir;
+    if (!bench::make_temp_dir("bodt-bench", temp_dir)) {
+        std::fprintf(stderr, "bodt_bench: cannot make a temp dir %s: %s\n", temp_dir.c_str(), std::strerror(errno));
         return 1;
     }
-    const std::string temp_dir = tdir;
 
     bench::CaseOptions copt;
-    struct stat sb;
     std::vector<std::string> notes;
-    if (!opt.shared_dir.empty() && stat(opt.shared_dir.c_str(), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    if (!opt.shared_dir.empty() && bench::is_dir(opt.shared_dir)) {
         copt.shared_dir = opt.shared_dir;
     } else {
         notes.push_back(opt.shared_dir.empty() ? "no shared folder: generated meshes only"
@@ -1321,16 +1182,11 @@ int main(int argc, char** argv) {
     copt.extra_surfaces = opt.extra_surfaces;
     copt.extra_meshes = opt.extra_meshes;
     std::vector<Case> cases = bench::make_cases(copt, notes);
-    if (!opt.case_regex.empty()) {
-        const std::regex re(opt.case_regex);
-        cases.erase(std::remove_if(cases.begin(), cases.end(),
-                                   [&](const Case& c) { return !std::regex_search(c.name, re); }),
-                    cases.end());
-    }
+    bench::keep_cases_matching(cases, opt.case_regex);
     if (opt.list_only) {
         for (const auto& c : cases) std::printf("%-36s %-15s %s\n", c.name.c_str(), c.kind.c_str(), c.source.c_str());
         for (const auto& n : notes) std::printf("# %s\n", n.c_str());
-        nftw(temp_dir.c_str(), rm_entry, 16, FTW_DEPTH | FTW_PHYS);
+        bench::remove_tree(temp_dir);
         return 0;
     }
     for (const auto& n : notes) std::fprintf(stderr, "bodt_bench: note: %s\n", n.c_str());
@@ -1386,22 +1242,15 @@ int main(int argc, char** argv) {
         rows.push_back(std::move(row));
         // the decompressed copy is not needed any more
         if (pm.from_file && pm.path.compare(0, temp_dir.size(), temp_dir) == 0) {
-            nftw(temp_dir.c_str(), rm_entry, 16, FTW_DEPTH | FTW_PHYS);
+            bench::remove_tree(temp_dir);
             mkdir(temp_dir.c_str(), 0700);
         }
     }
     const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-    nftw(temp_dir.c_str(), rm_entry, 16, FTW_DEPTH | FTW_PHYS);
+    bench::remove_tree(temp_dir);
 
     if (json != stdout) std::fclose(json);
-    if (!opt.markdown_path.empty()) {
-        FILE* f = std::fopen(opt.markdown_path.c_str(), "w");
-        if (!f) {
-            std::fprintf(stderr, "bodt_bench: cannot write %s: %s\n", opt.markdown_path.c_str(), std::strerror(errno));
-        } else {
-            std::fputs(markdown(rows, opt, notes, total_s).c_str(), f);
-            std::fclose(f);
-        }
-    }
+    if (!opt.markdown_path.empty() && !bench::write_text_file(opt.markdown_path, markdown(rows, opt, notes, total_s)))
+        std::fprintf(stderr, "bodt_bench: cannot write %s: %s\n", opt.markdown_path.c_str(), std::strerror(errno));
     return 0;
 }

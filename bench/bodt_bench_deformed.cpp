@@ -15,19 +15,15 @@
 
 #include "bodt.h"
 
+#include "bench_util.hpp"
 #include "deformed_cases.hpp"
 #include "deformed_report.hpp"
 
-#include <ftw.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cerrno>
 #include <cinttypes>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -44,6 +40,8 @@ namespace {
 using bench::CaseRows;
 using bench::DeformedCase;
 using bench::DeformedMesh;
+using bench::errmsg;
+using bench::MeshHandle;
 using bench::RowKind;
 using bench::RowResult;
 
@@ -133,19 +131,10 @@ Options parse_args(int argc, char** argv) {
 
 // ------------------------------------------------------------- one row
 
-struct Handle {
-    bodt_mesh* m = nullptr;
-    ~Handle() { bodt_mesh_destroy(m); }
-};
-
-std::string errmsg(const bodt_mesh* m, int st) {
-    const char* e = bodt_mesh_last_error(m);
-    return std::string(bodt_status_string(st)) + (e && *e ? std::string(": ") + e : std::string());
-}
-
 // A handle of the case's mesh with the given coordinates, regions and marked
 // faces.
-int make_handle(const DeformedMesh& dm, const std::vector<double>& xyz, uint32_t flags, Handle& h, std::string& where) {
+int make_handle(const DeformedMesh& dm, const std::vector<double>& xyz, uint32_t flags, MeshHandle& h,
+                std::string& where) {
     int st = bodt_mesh_create_ex(int32_t(xyz.size() / 3), xyz.data(), int32_t(dm.tets.size() / 4), dm.tets.data(), 0,
                                  flags, &h.m);
     if (st != BODT_OK) return where = "bodt_mesh_create_ex", st;
@@ -160,9 +149,7 @@ int make_handle(const DeformedMesh& dm, const std::vector<double>& xyz, uint32_t
 
 // Quality and recovery errors of the mesh as the handle holds it now.
 int measure(const bodt_mesh* m, RowResult& r, std::string& where) {
-    bodt_quality q;
-    std::memset(&q, 0, sizeof q);
-    q.size = sizeof q;
+    bodt_quality q = bench::sized_struct<bodt_quality>();
     int st = bodt_mesh_quality(m, &q);
     if (st != BODT_OK) return where = "bodt_mesh_quality", st;
     r.vertices = q.num_vertices - q.num_unused_vertices;
@@ -175,9 +162,7 @@ int measure(const bodt_mesh* m, RowResult& r, std::string& where) {
     r.measured = 1;
     if ((st = bodt_mesh_get_geometry_counts(m, &r.geometry_regions, &r.geometry_chains)) != BODT_OK)
         return where = "bodt_mesh_get_geometry_counts", st;
-    bodt_recovery_error e;
-    std::memset(&e, 0, sizeof e);
-    e.size = sizeof e;
+    bodt_recovery_error e = bench::sized_struct<bodt_recovery_error>();
     if ((st = bodt_mesh_recovery_error(m, &e)) != BODT_OK) return where = "bodt_mesh_recovery_error", st;
     r.density_mean = e.density_mean;
     r.density_max = e.density_max;
@@ -220,7 +205,7 @@ RowResult run_row(const DeformedCase& c, const DeformedMesh& dm, RowKind kind, c
                      r.where, r.message);
         return r;
     };
-    Handle orig, h;
+    MeshHandle orig, h;
     int st = make_handle(dm, dm.original, BODT_CREATE_DEFAULT, orig, where);
     if (st != BODT_OK) return where = "original: " + where, fail(st, orig.m);
     bodt_mesh* m = orig.m;
@@ -262,70 +247,18 @@ RowResult run_row(const DeformedCase& c, const DeformedMesh& dm, RowKind kind, c
 // peak RSS.
 RowResult run_isolated(const DeformedCase& c, const DeformedMesh& dm, RowKind kind, const Options& opt) {
     RowResult r = bench::empty_row_result();
-    if (!opt.fork_runs) {
-        r = run_row(c, dm, kind, opt);
-        struct rusage ru;
-        getrusage(RUSAGE_SELF, &ru);
-        r.peak_rss_mb = double(ru.ru_maxrss) / 1024.0;
-        return r;
+    const bench::ChildRun child =
+        bench::run_isolated(r, opt.fork_runs, opt.timeout_s, [&] { return run_row(c, dm, kind, opt); });
+    if (!child.ok) {
+        bench::set_row_status(r, child.status.c_str(), child.where,
+                              child.exit_status >= 0 ? "child exited without a result" : child.message);
+        if (child.status != "error")  // the child died; pipe and fork failures are only recorded
+            std::fprintf(stderr, "bodt_bench_deformed: %s / %s: %s\n", c.name.c_str(), bench::row_name(kind),
+                         r.message);
     }
-    int fds[2];
-    if (pipe(fds) != 0) return bench::set_row_status(r, "error", "pipe", std::strerror(errno)), r;
-    std::fflush(stdout);
-    std::fflush(stderr);
-    const pid_t pid = fork();
-    if (pid == 0) {
-        close(fds[0]);
-        if (opt.timeout_s > 0) alarm(unsigned(opt.timeout_s));
-        const RowResult res = run_row(c, dm, kind, opt);
-        const char* p = reinterpret_cast<const char*>(&res);
-        size_t left = sizeof res;
-        while (left > 0) {
-            const ssize_t w = write(fds[1], p, left);
-            if (w < 0 && errno == EINTR) continue;
-            if (w <= 0) break;
-            p += w;
-            left -= size_t(w);
-        }
-        std::fflush(stderr);
-        _exit(left == 0 ? 0 : 3);
-    }
-    close(fds[1]);
-    if (pid < 0) {
-        close(fds[0]);
-        return bench::set_row_status(r, "error", "fork", std::strerror(errno)), r;
-    }
-    RowResult got;
-    size_t n = 0;
-    while (n < sizeof got) {
-        const ssize_t k = read(fds[0], reinterpret_cast<char*>(&got) + n, sizeof got - n);
-        if (k < 0 && errno == EINTR) continue;
-        if (k <= 0) break;
-        n += size_t(k);
-    }
-    close(fds[0]);
-    int wst = 0;
-    struct rusage ru;
-    std::memset(&ru, 0, sizeof ru);
-    while (wait4(pid, &wst, 0, &ru) < 0 && errno == EINTR) {
-    }
-    if (n == sizeof got) {
-        r = got;
-    } else {
-        const bool sig = WIFSIGNALED(wst);
-        const bool timeout = sig && WTERMSIG(wst) == SIGALRM;
-        bench::set_row_status(r, timeout ? "timeout" : "crashed", "child process",
-                              timeout ? "no result after " + std::to_string(opt.timeout_s) + " s"
-                              : sig   ? std::string("killed by signal ") + std::to_string(WTERMSIG(wst)) + " (" +
-                                          strsignal(WTERMSIG(wst)) + ")"
-                                      : "child exited without a result");
-        std::fprintf(stderr, "bodt_bench_deformed: %s / %s: %s\n", c.name.c_str(), bench::row_name(kind), r.message);
-    }
-    r.peak_rss_mb = double(ru.ru_maxrss) / 1024.0;
+    r.peak_rss_mb = child.peak_rss_mb;
     return r;
 }
-
-int rm_entry(const char* path, const struct stat*, int, struct FTW*) { return remove(path); }
 
 }  // namespace
 
@@ -336,35 +269,24 @@ int main(int argc, char** argv) {
         usage_error("cannot write " + opt.json_path + ": " + std::strerror(errno));
     if (!opt.write_dir.empty()) mkdir(opt.write_dir.c_str(), 0777);
 
-    const char* tmp_root = std::getenv("TMPDIR");
-    std::string tmpl = std::string(tmp_root && *tmp_root ? tmp_root : "/tmp") + "/bodt-bench-deformed-XXXXXX";
-    std::vector<char> tbuf(tmpl.begin(), tmpl.end());
-    tbuf.push_back('\0');
-    if (!mkdtemp(tbuf.data())) {
-        std::fprintf(stderr, "bodt_bench_deformed: cannot make a temp dir %s\n", tmpl.c_str());
+    std::string temp_dir;
+    if (!bench::make_temp_dir("bodt-bench-deformed", temp_dir)) {
+        std::fprintf(stderr, "bodt_bench_deformed: cannot make a temp dir %s\n", temp_dir.c_str());
         return 1;
     }
-    const std::string temp_dir = tbuf.data();
 
     std::vector<std::string> notes;
     std::string shared = opt.shared_dir;
-    struct stat sb;
-    if (!shared.empty() && !(stat(shared.c_str(), &sb) == 0 && S_ISDIR(sb.st_mode))) {
+    if (!shared.empty() && !bench::is_dir(shared)) {
         notes.push_back("shared folder " + shared + " not found: the generated box with a hole only");
         shared.clear();
     }
     std::vector<DeformedCase> cases = bench::make_deformed_cases(shared, opt.extra_meshes, opt.stretch, temp_dir, notes);
-    if (!opt.case_regex.empty()) {
-        const std::regex re(opt.case_regex);
-        std::vector<DeformedCase> kept;
-        for (auto& c : cases)
-            if (std::regex_search(c.name, re)) kept.push_back(c);
-        cases.swap(kept);
-    }
+    bench::keep_cases_matching(cases, opt.case_regex);
     if (opt.list_only) {
         for (const auto& c : cases) std::printf("%-32s %-9s %s\n", c.name.c_str(), c.kind.c_str(), c.deformation.c_str());
         for (const auto& n : notes) std::printf("# %s\n", n.c_str());
-        nftw(temp_dir.c_str(), rm_entry, 16, FTW_DEPTH | FTW_PHYS);
+        bench::remove_tree(temp_dir);
         return 0;
     }
     for (const auto& n : notes) std::fprintf(stderr, "bodt_bench_deformed: note: %s\n", n.c_str());
@@ -408,17 +330,10 @@ int main(int argc, char** argv) {
         results.push_back(std::move(cr));
     }
     const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-    nftw(temp_dir.c_str(), rm_entry, 16, FTW_DEPTH | FTW_PHYS);
+    bench::remove_tree(temp_dir);
     if (json != stdout) std::fclose(json);
     const std::string md = bench::deformed_markdown(results, opt.max_steps, notes, total_s);
-    if (!opt.markdown_path.empty()) {
-        FILE* f = std::fopen(opt.markdown_path.c_str(), "w");
-        if (!f) {
-            std::fprintf(stderr, "bodt_bench_deformed: cannot write %s\n", opt.markdown_path.c_str());
-        } else {
-            std::fputs(md.c_str(), f);
-            std::fclose(f);
-        }
-    }
+    if (!opt.markdown_path.empty() && !bench::write_text_file(opt.markdown_path, md))
+        std::fprintf(stderr, "bodt_bench_deformed: cannot write %s\n", opt.markdown_path.c_str());
     return 0;
 }

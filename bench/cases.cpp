@@ -1,11 +1,11 @@
 // cases.cpp -- see cases.hpp.
 #include "cases.hpp"
 
+#include "bench_util.hpp"
 #include "surface_distance.hpp"
 
 #include <dirent.h>
 #include <fcntl.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -31,20 +31,6 @@
 namespace bench {
 
 namespace {
-
-bool ends_with(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-bool is_dir(const std::string& p) {
-    struct stat st;
-    return stat(p.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
-}
-
-bool is_file(const std::string& p) {
-    struct stat st;
-    return stat(p.c_str(), &st) == 0 && S_ISREG(st.st_mode);
-}
 
 std::vector<std::string> list_dir(const std::string& dir) {
     std::vector<std::string> out;
@@ -481,12 +467,17 @@ bool random_sphere(double refine_bound, PreparedMesh& pm, std::string& err) {
 
 #endif  // BODT_BENCH_WITH_TETGEN
 
-// A tet mesh file for bodt_mesh_read; .gz files (and the .node/.ele/.face
-// siblings of a gzipped TetGen file) are decompressed into temp_dir first.
+// A tet mesh file for bodt_mesh_read.
 bool prepare_file(const std::string& path, const std::string& temp_dir, PreparedMesh& pm, std::string& err) {
     pm.from_file = true;
+    return readable_mesh_path(path, temp_dir, pm.path, err);
+}
+
+}  // namespace
+
+bool readable_mesh_path(const std::string& path, const std::string& temp_dir, std::string& out, std::string& err) {
     if (!ends_with(path, ".gz")) {
-        pm.path = path;
+        out = path;
         return true;
     }
     const std::string plain = path.substr(0, path.size() - 3);
@@ -502,15 +493,20 @@ bool prepare_file(const std::string& path, const std::string& temp_dir, Prepared
                 if (!gunzip_file(stem + ext, dstem + ext, err)) return false;  // not gzipped: copy
             }
         }
-        pm.path = dstem + ".ele";
+        out = dstem + ".ele";
         return true;
     }
     if (!gunzip_file(path, dest, err)) return false;
-    pm.path = dest;
+    out = dest;
     return true;
 }
 
-}  // namespace
+std::string mesh_case_name(const std::string& path) {
+    std::string stem = basename_of(path);
+    if (ends_with(stem, ".gz")) stem = stem.substr(0, stem.size() - 3);
+    stem = stem.substr(0, stem.rfind('.'));
+    return safe_name("file." + stem);
+}
 
 bool gunzip_file(const std::string& src, const std::string& dest, std::string& err) {
 #ifdef BODT_BENCH_WITH_ZLIB
@@ -608,11 +604,8 @@ std::vector<Case> make_cases(const CaseOptions& opt, std::vector<std::string>& n
     }
     for (const auto& f : opt.extra_meshes) files.push_back(f);
     for (const auto& path : files) {
-        std::string stem = basename_of(path);
-        if (ends_with(stem, ".gz")) stem = stem.substr(0, stem.size() - 3);
-        stem = stem.substr(0, stem.rfind('.'));
         Case c;
-        c.name = safe_name("file." + stem);
+        c.name = mesh_case_name(path);
         c.kind = "file";
         c.source = path;
         c.prepare = [path, temp_dir](PreparedMesh& pm, std::string& err) {

@@ -54,6 +54,15 @@ std::vector<Case> make_cases(const CaseOptions& opt, std::vector<std::string>& n
 // Decompress a .gz file to dest (zlib, or `gzip -dc` without zlib).
 bool gunzip_file(const std::string& src, const std::string& dest, std::string& err);
 
+// The path bodt_mesh_read takes for a tet mesh file: a .gz file (with the
+// .node/.ele/.face siblings of a gzipped TetGen file) decompressed into
+// temp_dir, since bodt_mesh_read reads plain files only.
+bool readable_mesh_path(const std::string& path, const std::string& temp_dir, std::string& out, std::string& err);
+
+// "file.STEM" for a tet mesh file: its name without .gz and the extension,
+// file-name safe.
+std::string mesh_case_name(const std::string& path);
+
 }  // namespace bench
 
 #endif

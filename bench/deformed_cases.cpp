@@ -1,30 +1,19 @@
 // deformed_cases.cpp -- see deformed_cases.hpp.
 #include "deformed_cases.hpp"
 
+#include "bench_util.hpp"
 #include "bodt.h"
 #include "cases.hpp"
 #include "hole_box.hpp"
 #include "surface_distance.hpp"
 
-#include <sys/stat.h>
-
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <memory>
 
 namespace bench {
 
 namespace {
-
-bool ends_with(const std::string& s, const std::string& t) {
-    return s.size() >= t.size() && s.compare(s.size() - t.size(), t.size(), t) == 0;
-}
-
-bool is_file(const std::string& p) {
-    struct stat st;
-    return stat(p.c_str(), &st) == 0 && S_ISREG(st.st_mode);
-}
 
 double orient6(const double* x, const int32_t* t) {
     const double *a = x + 3 * t[0], *b = x + 3 * t[1], *c = x + 3 * t[2], *d = x + 3 * t[3];
@@ -61,41 +50,15 @@ bool prepare_hole(const HoleBox& b, const HoleDeformation& d, DeformedMesh& m, s
 
 // ------------------------------------------------------------- mesh files
 
-struct Handle {
-    bodt_mesh* m = nullptr;
-    ~Handle() { bodt_mesh_destroy(m); }
-};
-
-std::string lib_error(const bodt_mesh* m, int st) {
-    const char* e = bodt_mesh_last_error(m);
-    return std::string(bodt_status_string(st)) + (e && *e ? std::string(": ") + e : std::string());
-}
-
-// The path bodt_mesh_read takes: .gz files (with their .node/.ele/.face
-// siblings) decompressed into temp_dir.
-bool plain_path(const std::string& path, const std::string& temp_dir, std::string& out, std::string& err) {
-    if (!ends_with(path, ".gz")) return out = path, true;
-    const std::string plain = path.substr(0, path.size() - 3);
-    const std::string base = temp_dir + "/" + plain.substr(plain.rfind('/') + 1);
-    if (!ends_with(plain, ".ele") && !ends_with(plain, ".node")) return out = base, gunzip_file(path, base, err);
-    const std::string stem = plain.substr(0, plain.rfind('.')), dstem = base.substr(0, base.rfind('.'));
-    for (const char* ext : {".node", ".ele", ".face"}) {
-        const std::string src = is_file(stem + ext + ".gz") ? stem + ext + ".gz" : stem + ext;
-        if (is_file(src) && !gunzip_file(src, dstem + ext, err)) return false;  // gzopen reads plain files too
-    }
-    out = dstem + ".ele";
-    return true;
-}
-
 // Reads the mesh, then moves its boundary vertices (faces of one tet) beyond
 // the middle plane x = xmid of the bounding box to xmid + stretch (x - xmid).
 bool prepare_file(const std::string& path, const std::string& temp_dir, double stretch, DeformedMesh& m,
                   std::string& err) {
     std::string p;
-    if (!plain_path(path, temp_dir, p, err)) return false;
-    Handle h;
+    if (!readable_mesh_path(path, temp_dir, p, err)) return false;
+    MeshHandle h;
     int st = bodt_mesh_read(p.c_str(), &h.m);
-    if (st != BODT_OK) return err = "bodt_mesh_read " + path + ": " + lib_error(nullptr, st), false;
+    if (st != BODT_OK) return err = "bodt_mesh_read " + path + ": " + errmsg(nullptr, st), false;
     int32_t nv = 0, nt = 0, nb = 0;
     bodt_mesh_get_counts(h.m, &nv, &nt, &nb);
     m.original.resize(3 * size_t(nv));
@@ -106,7 +69,7 @@ bool prepare_file(const std::string& path, const std::string& temp_dir, double s
         (st = bodt_mesh_get_tets(h.m, m.tets.data(), m.tets.size())) != BODT_OK ||
         (st = bodt_mesh_get_regions(h.m, m.regions.data(), m.regions.size())) != BODT_OK ||
         (st = bodt_mesh_get_boundary_faces(h.m, faces.data(), markers.data(), size_t(nb))) != BODT_OK)
-        return err = path + ": " + lib_error(h.m, st), false;
+        return err = path + ": " + errmsg(h.m, st), false;
     for (size_t f = 0; f < markers.size(); ++f)
         if (markers[f] != 0) {
             m.faces.insert(m.faces.end(), &faces[3 * f], &faces[3 * f] + 3);
@@ -140,15 +103,6 @@ bool prepare_file(const std::string& path, const std::string& temp_dir, double s
                   nv, nt, m.regions.empty() ? size_t(1) : size_t(hi_region - lo_region + 1), moved, m.inverted);
     m.note = buf;
     return true;
-}
-
-std::string file_stem(const std::string& path) {
-    std::string s = path.substr(path.rfind('/') + 1);
-    if (ends_with(s, ".gz")) s = s.substr(0, s.size() - 3);
-    s = s.substr(0, s.rfind('.'));
-    for (char& c : s)
-        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.')) c = '_';
-    return s;
 }
 
 }  // namespace
@@ -196,7 +150,7 @@ std::vector<DeformedCase> make_deformed_cases(const std::string& shared_dir, con
                   "(interior vertices stay)",
                   stretch);
     for (const std::string& path : files)
-        cases.push_back({"file." + file_stem(path), "file", path, what,
+        cases.push_back({mesh_case_name(path), "file", path, what,
                          [path, temp_dir, stretch](DeformedMesh& m, std::string& err) {
                              return prepare_file(path, temp_dir, stretch, m, err);
                          }});

@@ -1,11 +1,11 @@
 // deformed_report.cpp -- see deformed_report.hpp.
 #include "deformed_report.hpp"
 
+#include "bench_util.hpp"
 #include "bodt.h"
 
 #include <cinttypes>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
@@ -13,30 +13,6 @@
 namespace bench {
 
 namespace {
-
-std::string fmt(const char* f, ...) {
-    va_list ap, ap2;
-    va_start(ap, f);
-    va_copy(ap2, ap);
-    const int n = std::vsnprintf(nullptr, 0, f, ap);
-    va_end(ap);
-    std::string b(n > 0 ? size_t(n) : 0, '\0');
-    if (n > 0) std::vsnprintf(&b[0], size_t(n) + 1, f, ap2);
-    va_end(ap2);
-    return b;
-}
-
-std::string json_str(const std::string& s) {
-    std::string o = "\"";
-    for (unsigned char ch : s) {
-        if (ch == '"' || ch == '\\') o += '\\', o += char(ch);
-        else if (ch < 0x20) o += fmt("\\u%04x", ch);
-        else o += char(ch);
-    }
-    return o + "\"";
-}
-
-std::string json_num(double v, const char* f = "%.6g") { return std::isfinite(v) ? fmt(f, v) : "null"; }
 
 // A recovery error: "–" without edges to measure (no target density, or no
 // cylindrical region).
