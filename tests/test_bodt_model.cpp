@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "test_util.h"
+#include "core_checks.hpp"
 
 namespace {
 
@@ -54,19 +55,6 @@ struct Star {
     std::vector<Vec3> ring;             // boundary ring y_1..y_m; empty for an inner star
     double radius = 0.0;                // largest |p - x0|
 };
-
-struct Rng {
-    tm_rng r;
-    explicit Rng(uint64_t seed) { tm_rng_seed(&r, seed); }
-    double uniform(double lo, double hi) { return lo + (hi - lo) * tm_rng_uniform(&r); }
-};
-
-// A random rotation (from a random unit quaternion).
-Mat3 random_rotation(Rng& rng) {
-    Eigen::Quaterniond q(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-    q.normalize();
-    return q.toRotationMatrix();
-}
 
 double orient6(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
     return (b - a).dot((c - a).cross(d - a));

@@ -46,13 +46,6 @@ static bodt_mesh *box_handle(test_mesh *m, int n, double jitter, uint64_t seed) 
     return create_ok(m, m->tets, 0);
 }
 
-static void sort3(int32_t *v) {
-    int32_t t;
-    if (v[0] > v[1]) t = v[0], v[0] = v[1], v[1] = t;
-    if (v[1] > v[2]) t = v[1], v[1] = v[2], v[2] = t;
-    if (v[0] > v[1]) t = v[0], v[0] = v[1], v[1] = t;
-}
-
 static int cmp_key3(const int32_t *a, const int32_t *b) {
     for (int k = 0; k < 3; ++k)
         if (a[k] != b[k]) return a[k] < b[k] ? -1 : 1;

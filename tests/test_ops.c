@@ -377,13 +377,7 @@ static int32_t *face_set(const snap *s) {
     for (int32_t f = 0; f < s->nb; ++f) {
         int32_t *p = &q[4 * f];
         for (int i = 0; i < 3; ++i) p[i] = s->faces[3 * f + i];
-        for (int i = 0; i < 2; ++i)
-            for (int j = 0; j < 2 - i; ++j)
-                if (p[j] > p[j + 1]) {
-                    const int32_t t = p[j];
-                    p[j] = p[j + 1];
-                    p[j + 1] = t;
-                }
+        sort3(p);
         p[3] = s->markers[f];
     }
     qsort(q, (size_t)s->nb, 4 * sizeof *q, cmp_face);

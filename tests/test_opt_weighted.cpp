@@ -67,6 +67,7 @@
 #include <vector>
 
 #include "test_util.h"
+#include "core_checks.hpp"
 
 namespace {
 
@@ -74,19 +75,6 @@ using bodt::TetMesh;
 using bodt::TetPoints;
 using bodt::Vec3;
 using Mat3 = Eigen::Matrix3d;
-
-struct Rng {
-    tm_rng r;
-    explicit Rng(uint64_t seed) { tm_rng_seed(&r, seed); }
-    double uniform(double lo, double hi) { return lo + (hi - lo) * tm_rng_uniform(&r); }
-    Vec3 point(double lo, double hi) { return Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)); }
-};
-
-Mat3 random_rotation(Rng& rng) {
-    Eigen::Quaterniond q(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-    q.normalize();
-    return q.toRotationMatrix();
-}
 
 double orient6(const TetPoints& p) { return (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])); }
 

@@ -90,16 +90,6 @@ static int cmp_triple(const void *a, const void *b) {
     return 0;
 }
 
-static void sort3(int32_t *t) {
-    for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2 - i; ++j)
-            if (t[j] > t[j + 1]) {
-                const int32_t x = t[j];
-                t[j] = t[j + 1];
-                t[j + 1] = x;
-            }
-}
-
 static snap take(const bodt_mesh *h) {
     snap s;
     assert_int_equal(bodt_mesh_get_counts(h, &s.nv, &s.nt, &s.nb), BODT_OK);
@@ -146,24 +136,9 @@ static void expect_same_faces(const snap *a, const snap *b, const char *what) {
                      b->faces[3 * f + 2], a->faces[3 * f], a->faces[3 * f + 1], a->faces[3 * f + 2]);
 }
 
-typedef struct totals {
-    int steps;
-    int32_t flips, inserted, collapsed, moved;
-} totals;
-
-static int add_up(const bodt_step_report *r, void *user) {
-    totals *t = user;
-    ++t->steps;
-    t->flips += r->flips;
-    t->inserted += r->vertices_inserted;
-    t->collapsed += r->edges_collapsed;
-    t->moved += r->vertices_moved;
-    return 0;
-}
-
-static totals run_ok(bodt_mesh *h, int32_t steps) {
-    totals t = {0, 0, 0, 0, 0};
-    const int st = bodt_run(h, steps, add_up, &t);
+static step_totals run_ok(bodt_mesh *h, int32_t steps) {
+    step_totals t = {0, 0, 0, 0, 0};
+    const int st = bodt_run(h, steps, add_step_report, &t);
     if (st != BODT_OK) fail_msg("bodt_run: %s: %s", bodt_status_string(st), bodt_mesh_last_error(h));
     return t;
 }
@@ -279,7 +254,7 @@ static void test_boundary_kept(void **state) {
     get_quality(h, &q0);
     const snap s0 = take(h);
     assert_int_equal(s0.nb, 6 * 2 * 25);
-    const totals t = run_ok(h, 10);
+    const step_totals t = run_ok(h, 10);
     get_quality(h, &q1);
     const snap s1 = take(h);
     print_message("boundary kept: %d steps, %d moves, %d flips; min dihedral %.3f -> %.3f, min stretch %.4f -> %.4f\n",
@@ -388,7 +363,7 @@ static void test_sliver(void **state) {
         assert_near(q0.volume, vol, 1e-15);
         if (pass < 2) assert_int_equal(bodt_set_param_int(h, BODT_PARAM_OPS, BODT_OP_SMOOTH), BODT_OK);
         if (pass == 1) assert_int_equal(bodt_set_param_double(h, BODT_PARAM_POOR_QUALITY, 1.0), BODT_OK);
-        const totals t = run_ok(h, 20);
+        const step_totals t = run_ok(h, 20);
         get_quality(h, &q1);
         const snap s1 = take(h);
         static const char *const names[3] = {"sliver, smoothing only", "sliver, smoothing only, gamma 1",
@@ -476,7 +451,7 @@ static void test_weights(void **state) {
         bodt_quality q0, q1;
         get_quality(h, &q0);
         const snap s0 = take(h);
-        const totals t = run_ok(h, 10);
+        const step_totals t = run_ok(h, 10);
         get_quality(h, &q1);
         out[k] = take(h);
         print_message("C = %.2f: %d steps, %d flips; min stretch %.4f -> %.4f, mean %.4f -> %.4f, min dihedral %.3f "

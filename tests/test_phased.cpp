@@ -66,6 +66,7 @@
 #include <vector>
 
 #include "test_util.h"
+#include "core_checks.hpp"
 
 namespace {
 
@@ -83,15 +84,6 @@ using bodt::VertexClass;
 
 constexpr double kPi = M_PI;
 constexpr double kDeg = 180.0 / M_PI;
-
-#define CHECK(cond, ...)                                                   \
-    do {                                                                   \
-        if (!(cond)) {                                                     \
-            char msg_[400];                                                \
-            std::snprintf(msg_, sizeof msg_, __VA_ARGS__);                 \
-            fail_msg("%s: %s (%s, line %d)", what, msg_, #cond, __LINE__); \
-        }                                                                  \
-    } while (0)
 
 // ------------------------------------------------------------------ inputs
 
@@ -700,6 +692,20 @@ void test_degenerate_sliver(void**) { check_degenerate_removed(small_bad_cases()
 void test_degenerate_cap(void**) { check_degenerate_removed(small_bad_cases()[1]); }
 void test_degenerate_spade(void**) { check_degenerate_removed(small_bad_cases()[2]); }
 
+// Every boundary face of m lies in one of the planes of the unit box's faces (1e-12).
+void check_faces_on_unit_box(const TetMesh& m, const char* what) {
+    for (const FaceKey& f : boundary_faces(m)) {
+        bool flat = false;
+        for (int axis = 0; axis < 3 && !flat; ++axis)
+            for (double side : {0.0, 1.0}) {
+                bool all = true;
+                for (int32_t v : f.v) all = all && std::fabs(m.points[v][axis] - side) <= 1e-12;
+                flat = flat || all;
+            }
+        CHECK(flat, "face %d %d %d off the box", f.v[0], f.v[1], f.v[2]);
+    }
+}
+
 // A grid over [-0.25, 1.25]^3 holding `value` everywhere.
 bodt::DensityGrid constant_grid(double value) {
     return bodt::DensityGrid(Vec3::Constant(-0.25), Vec3::Constant(0.75), {3, 3, 3}, std::vector<double>(27, value));
@@ -730,16 +736,7 @@ void test_density_split(void**) {
     assert_near(total_volume(out), 1.0, 1e-12);
     assert_near(boundary_area(out), 6.0, 1e-12);
     // The box's faces stay flat: every boundary vertex on one of its planes.
-    for (const FaceKey& f : boundary_faces(out)) {
-        bool flat = false;
-        for (int axis = 0; axis < 3 && !flat; ++axis)
-            for (double side : {0.0, 1.0}) {
-                bool all = true;
-                for (int32_t v : f.v) all = all && std::fabs(out.points[v][axis] - side) <= 1e-12;
-                flat = flat || all;
-            }
-        CHECK(flat, "face %d %d %d off the box", f.v[0], f.v[1], f.v[2]);
-    }
+    check_faces_on_unit_box(out, what);
 }
 
 void test_density_collapse(void**) {
@@ -854,16 +851,7 @@ void test_surface_flip(void**) {
     assert_near(total_volume(out), 1.0, 1e-12);
     assert_near(boundary_area(out), 6.0, 1e-12);
     // Top face still planar, every face on one of the box's planes.
-    for (const FaceKey& f : boundary_faces(out)) {
-        bool flat = false;
-        for (int axis = 0; axis < 3 && !flat; ++axis)
-            for (double side : {0.0, 1.0}) {
-                bool all = true;
-                for (int32_t v : f.v) all = all && std::fabs(out.points[v][axis] - side) <= 1e-12;
-                flat = flat || all;
-            }
-        CHECK(flat, "face %d %d %d off the box", f.v[0], f.v[1], f.v[2]);
-    }
+    check_faces_on_unit_box(out, what);
     CHECK(non_delaunay_top(out) < non_delaunay_top(mesh), "non-Delaunay top edges %d -> %d", non_delaunay_top(mesh),
           non_delaunay_top(out));
 }

@@ -107,16 +107,6 @@ static int32_t count_inverted(const test_mesh *m, int32_t *zero) {
     return n;
 }
 
-static void sort3(int32_t *t) {
-    for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2 - i; ++j)
-            if (t[j] > t[j + 1]) {
-                const int32_t x = t[j];
-                t[j] = t[j + 1];
-                t[j + 1] = x;
-            }
-}
-
 /* A face of a tet: its vertices sorted, and +-1 for the orientation the
  * tet induces on it relative to that sorted order. */
 typedef struct oface {
@@ -245,21 +235,6 @@ static void expect_z_cylinder(const bodt_shape_fit *fit, double r, double rel_to
     if (!(off <= 1e-9 * r))
         fail_msg("%s: axis through (%.17g %.17g %.17g), %.3g from the z axis", what, fit->point[0], fit->point[1],
                  fit->point[2], off);
-}
-
-typedef struct totals {
-    int steps;
-    int32_t flips, inserted, collapsed, moved;
-} totals;
-
-static int add_up(const bodt_step_report *r, void *user) {
-    totals *t = user;
-    ++t->steps;
-    t->flips += r->flips;
-    t->inserted += r->vertices_inserted;
-    t->collapsed += r->edges_collapsed;
-    t->moved += r->vertices_moved;
-    return 0;
 }
 
 /* ------------------------------------------------------------- generator */
@@ -502,8 +477,8 @@ static void test_recovery(void **state) {
     assert_true(e0.density_edges > 0);
     assert_true(e0.density_mean > 0.0);
 
-    totals t = {0, 0, 0, 0, 0};
-    st = bodt_run(h, 30, add_up, &t);
+    step_totals t = {0, 0, 0, 0, 0};
+    st = bodt_run(h, 30, add_step_report, &t);
     if (st != BODT_OK) fail_msg("bodt_run: %s: %s", bodt_status_string(st), bodt_mesh_last_error(h));
     get_quality(h, &q1);
     const bodt_recovery_error e1 = recovery(h);
@@ -743,14 +718,14 @@ static void test_density_grid(void **state) {
     assert_true(e0.density_edges > 0);
     assert_true(e0.density_mean >= 0.5 - 1e-12); /* every edge at most half as dense as asked */
 
-    totals t = {0, 0, 0, 0, 0};
+    step_totals t = {0, 0, 0, 0, 0};
     for (int s = 0; s < 3; ++s) {
         bodt_step_report r;
         memset(&r, 0, sizeof r);
         r.size = sizeof r;
         st = bodt_step(h, &r);
         if (st != BODT_OK) fail_msg("bodt_step: %s: %s", bodt_status_string(st), bodt_mesh_last_error(h));
-        add_up(&r, &t);
+        add_step_report(&r, &t);
     }
     bodt_quality q;
     get_quality(h, &q);

@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "test_util.h"
+#include "core_checks.hpp"
 
 namespace {
 
@@ -52,19 +53,6 @@ using bodt::Vec3;
 using Mat3 = Eigen::Matrix3d;
 
 const double kScales[] = {1e-3, 1.0, 1e3};
-
-struct Rng {
-    tm_rng r;
-    explicit Rng(uint64_t seed) { tm_rng_seed(&r, seed); }
-    double uniform(double lo, double hi) { return lo + (hi - lo) * tm_rng_uniform(&r); }
-    Vec3 point(double lo, double hi) { return Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)); }
-};
-
-Mat3 random_rotation(Rng& rng) {
-    Eigen::Quaterniond q(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-    q.normalize();
-    return q.toRotationMatrix();
-}
 
 // A random placement at scale s: rotation R, translation up to 5 s.
 struct Pose {

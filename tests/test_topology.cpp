@@ -95,6 +95,7 @@
 #include <vector>
 
 #include "test_util.h"
+#include "core_checks.hpp"
 
 namespace {
 
@@ -326,15 +327,6 @@ double depth_in(const bodt::TetPoints& p, const Vec3& x) {
     }
     return depth;
 }
-
-#define CHECK(cond, ...)                                                     \
-    do {                                                                     \
-        if (!(cond)) {                                                       \
-            char msg_[400];                                                  \
-            std::snprintf(msg_, sizeof msg_, __VA_ARGS__);                   \
-            fail_msg("%s: %s (%s, line %d)", what, msg_, #cond, __LINE__);   \
-        }                                                                    \
-    } while (0)
 
 // Every invariant of the header comment; returns the written mesh (topology
 // built).

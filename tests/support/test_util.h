@@ -1,7 +1,7 @@
 /*
  * Small helpers shared by the cmocka tests: double comparisons with a
  * message (cmocka 1.1's assert_float_equal works in float), substring checks,
- * and cmocka's required includes in the right order.
+ * sorting a triple, and cmocka's required includes in the right order.
  */
 #ifndef BODT_TEST_UTIL_H
 #define BODT_TEST_UTIL_H
@@ -21,6 +21,17 @@ extern "C" {
 #ifdef __cplusplus
 }
 #endif
+
+/* The three values at t in increasing order. */
+static inline void sort3(int32_t *t) {
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2 - i; ++j)
+            if (t[j] > t[j + 1]) {
+                const int32_t x = t[j];
+                t[j] = t[j + 1];
+                t[j + 1] = x;
+            }
+}
 
 /* |a - b| <= tol, or the test fails naming both values. */
 #define assert_near(a, b, tol)                                                                         \

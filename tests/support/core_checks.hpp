@@ -1,0 +1,44 @@
+// Helpers shared by the white-box C++ tests (those linking bodt_core):
+// seeded random numbers and rotations, and CHECK, a condition check with a
+// printf-style message.  Header only; include it after the other headers.
+#ifndef BODT_TEST_CORE_CHECKS_HPP
+#define BODT_TEST_CORE_CHECKS_HPP
+
+#include "quality/tet_geometry.hpp"
+
+#include "mesh_gen.h"
+
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <cstdio>
+
+#include "test_util.h"
+
+// Seeded uniform random numbers (mesh_gen's tm_rng): the same on every platform.
+struct Rng {
+    tm_rng r;
+    explicit Rng(uint64_t seed) { tm_rng_seed(&r, seed); }
+    double uniform(double lo, double hi) { return lo + (hi - lo) * tm_rng_uniform(&r); }
+    bodt::Vec3 point(double lo, double hi) { return bodt::Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)); }
+};
+
+// A random rotation (from a random unit quaternion).
+inline Eigen::Matrix3d random_rotation(Rng& rng) {
+    Eigen::Quaterniond q(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    q.normalize();
+    return q.toRotationMatrix();
+}
+
+// Fails the test unless `cond`, with the message (printf arguments), the
+// condition and the line, prefixed by `what` (a const char* in scope: the case).
+#define CHECK(cond, ...)                                                   \
+    do {                                                                   \
+        if (!(cond)) {                                                     \
+            char msg_[400];                                                \
+            std::snprintf(msg_, sizeof msg_, __VA_ARGS__);                 \
+            fail_msg("%s: %s (%s, line %d)", what, msg_, #cond, __LINE__); \
+        }                                                                  \
+    } while (0)
+
+#endif  // BODT_TEST_CORE_CHECKS_HPP
