@@ -109,6 +109,17 @@ inline bool in_circumsphere(const TetPoints& p, const Vec3& x) {
     return (x - c).squaredNorm() < (p[0] - c).squaredNorm() * (1.0 - 1e-10);
 }
 
+// The edge (a, b) shared by triangles (a, b, c) and (b, a, d) is not
+// locally Delaunay: the angles opposite it sum to more than pi (beyond
+// round-off).
+inline bool edge_not_delaunay(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    const auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+        const Vec3 u = q - p, w = r - p;
+        return std::atan2(u.cross(w).norm(), u.dot(w));
+    };
+    return angle(c, a, b) + angle(d, a, b) > M_PI * (1.0 + 1e-9);
+}
+
 // The sine of the tet's worst dihedral angle, small for angles near 0 and
 // near 180 degrees alike: the quality the topology operations maximise.
 // sin(theta_e) = 3 V |e| / (2 A_i A_j) for the faces i, j at edge e, which

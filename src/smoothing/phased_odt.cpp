@@ -22,11 +22,6 @@ Vec3 triangle_circumcenter(const Vec3& a, const Vec3& b, const Vec3& c) {
     return a + (ac.squaredNorm() * n.cross(ab) + ab.squaredNorm() * ac.cross(n)) / (2.0 * n.squaredNorm());
 }
 
-double angle_at(const Vec3& p, const Vec3& q, const Vec3& r) {
-    const Vec3 a = q - p, b = r - p;
-    return std::atan2(a.cross(b).norm(), a.dot(b));
-}
-
 // The vertex opposite edge (a, b) in the other surface face on it; -1 if
 // there is none or the edge is sharp (no Delaunay test across a border).
 int32_t across(const TetMesh& mesh, const GeometryModel& g, int32_t a, int32_t b, int32_t c) {
@@ -52,8 +47,7 @@ bool triangle_delaunay(const TetMesh& mesh, const GeometryModel& g, const FaceKe
         const int32_t a = f.v[i], b = f.v[(i + 1) % 3], c = f.v[(i + 2) % 3];
         const int32_t d = across(mesh, g, a, b, c);
         if (d < 0) continue;
-        const Vec3 &pa = mesh.points[a], &pb = mesh.points[b];
-        if (angle_at(mesh.points[c], pa, pb) + angle_at(mesh.points[d], pa, pb) > M_PI * (1.0 + 1e-12)) return false;
+        if (edge_not_delaunay(mesh.points[a], mesh.points[b], mesh.points[c], mesh.points[d])) return false;
     }
     return true;
 }

@@ -174,7 +174,8 @@ int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRu
     // its own tets and surface faces, then collapse a into it.
     const size_t mark = mesh.checkpoint();
     const Vec3 old_b = mesh.point(b);
-    const Vec3 mid = 0.5 * (mesh.point(a) + old_b);
+    Vec3 mid = 0.5 * (mesh.point(a) + old_b);
+    if (rules.snap_to_shape && rank(b) > 0) rules.snap_to_shape(mesh, b, mid);
     const double length = (mesh.point(a) - old_b).norm();
     const std::vector<int32_t> star = mesh.tets_of(b);
     const TetLimits limits = limits_for(mesh, star, rules, must_exceed);
@@ -190,7 +191,8 @@ int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRu
             if (!mesh.is_surface_face(f)) continue;
             const Vec3 n = triangle_normal(f.v[0] == b ? old_b : mesh.point(f.v[0]), f.v[1] == b ? old_b : mesh.point(f.v[1]),
                                            f.v[2] == b ? old_b : mesh.point(f.v[2]));
-            ok = in_plane(n, old_b, mid, length);
+            ok = in_plane(n, old_b, mid, length) ||
+                 (rules.on_curved_shape && rules.on_curved_shape(mesh, {f.v[0], f.v[1], f.v[2]}, mid));
         }
     }
     if (ok && rank(b) > 0) ok = rules.surface_may_change && feature_lines_allow(mesh, b, a, length, rules);

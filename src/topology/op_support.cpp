@@ -28,6 +28,29 @@ bool acceptable_tet(const TetPoints& p, const TetLimits& limits) {
     return shape.stretch >= limits.stretch_floor && (!limits.keep_range || within(shape.cosines, limits.range));
 }
 
+std::vector<int32_t> tets_touching(const EditableMesh& mesh, const std::vector<int32_t>& vs) {
+    std::vector<int32_t> out;
+    for (int32_t v : vs) out.insert(out.end(), mesh.tets_of(v).begin(), mesh.tets_of(v).end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+bool odt_target(const EditableMesh& mesh, int32_t v, Vec3& target) {
+    if (mesh.vertex_class(v) != VertexClass::Interior) return false;
+    Vec3 sum = Vec3::Zero();
+    double volume = 0.0;
+    for (int32_t t : mesh.tets_of(v)) {
+        const TetPoints p = mesh.tet_points(t);
+        const double vol = signed_volume(p[0], p[1], p[2], p[3]);
+        sum += vol * circumcenter(p);
+        volume += vol;
+    }
+    if (!(volume > 0.0)) return false;
+    target = sum / volume;
+    return true;
+}
+
 bool all_delaunay(const std::vector<TetPoints>& tets, const std::vector<Vec3>& points) {
     for (const TetPoints& t : tets)
         for (const Vec3& x : points)

@@ -25,6 +25,14 @@ TetLimits limits_for(const EditableMesh& mesh, const std::vector<int32_t>& repla
                      double must_exceed);
 bool acceptable_tet(const TetPoints& p, const TetLimits& limits);
 
+// The tets touching any of `vs`, each once, ascending.
+std::vector<int32_t> tets_touching(const EditableMesh& mesh, const std::vector<int32_t>& vs);
+
+// ODT's target for an interior vertex (paper 000 eq. 3): the
+// volume-weighted mean of the circumcentres of its star; false for other
+// vertices or a star without positive volume.
+bool odt_target(const EditableMesh& mesh, int32_t v, Vec3& target);
+
 // Every tet of `tets` has none of `points` strictly inside its circumsphere.
 bool all_delaunay(const std::vector<TetPoints>& tets, const std::vector<Vec3>& points);
 

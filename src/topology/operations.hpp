@@ -35,6 +35,9 @@ struct TopologyRules {
     // for "x lies in the face's plane" or "the line is straight".  Empty:
     // the surface is flat between feature edges.
     std::function<bool(const EditableMesh& mesh, std::initializer_list<int32_t> element, const Vec3& x)> on_curved_shape;
+    // Where a vertex that a change moves (the midpoint of an edge collapse)
+    // goes to stay on its fitted shape; empty: where the change puts it.
+    std::function<void(const EditableMesh& mesh, int32_t v, Vec3& x)> snap_to_shape;
 };
 
 // The largest number of tets around an edge that edge removal considers.
@@ -66,10 +69,13 @@ int32_t split_face(EditableMesh& mesh, const FaceKey& face, Vec3 p, const Topolo
 // neighbourhood is flat (one plane and one marker apart from feature edges).
 bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const TopologyRules& rules, double must_exceed);
 
-// Edge collapse with the position rules of paper 002 sec. 3.5.1: never
-// between two corners; to the endpoint of higher class (corner > feature
-// line > surface > interior) if the classes differ; to the midpoint if they
-// are equal.  Returns the surviving vertex or -1.
+// Edge collapse with the exclusions and position rules of paper 002 sec.
+// 3.5.1: never between two corners (a); never off the feature lines
+// between two of their vertices (b) or through the inside between two
+// surface vertices (c), which collapse_half_edge's rules refuse; to the
+// endpoint of higher class (corner > feature line > surface > interior) if
+// the classes differ; to the midpoint (snapped to the shape, see
+// TopologyRules) if they are equal.  Returns the surviving vertex or -1.
 int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& rules, double must_exceed);
 
 // The worst dihedral sine of tets (min_dihedral_sine).

@@ -14,25 +14,6 @@ namespace {
 
 constexpr double kDegree = M_PI / 180.0;
 
-// The tets touching any of `vs`, each once.
-std::vector<int32_t> tets_around(const EditableMesh& mesh, std::initializer_list<int32_t> vs) {
-    std::vector<int32_t> out;
-    for (int32_t v : vs)
-        if (v >= 0) out.insert(out.end(), mesh.tets_of(v).begin(), mesh.tets_of(v).end());
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-}
-
-int rank(VertexClass c) {
-    switch (c) {
-        case VertexClass::Interior: return 0;
-        case VertexClass::Surface: return 1;
-        case VertexClass::FeatureLine: return 2;
-        default: return 3;  // corners and fixed vertices never go
-    }
-}
-
 // The distinct edges of the surface faces, in a fixed order.
 std::vector<std::array<int32_t, 2>> surface_edges(const EditableMesh& mesh) {
     EdgeSet seen;
@@ -78,10 +59,6 @@ std::vector<int32_t> surface_opposites(const EditableMesh& mesh, int32_t a, int3
     return out;
 }
 
-double angle_at(const Vec3& p, const Vec3& q, const Vec3& r) {
-    const Vec3 a = q - p, b = r - p;
-    return std::atan2(a.cross(b).norm(), a.dot(b));
-}
 
 }  // namespace
 
@@ -90,6 +67,9 @@ PhasedTopology::PhasedTopology(EditableMesh& mesh, GeometryModel& geometry, cons
     settings_.rules.surface_may_change = true;
     settings_.rules.on_curved_shape = [this](const EditableMesh&, std::initializer_list<int32_t> element, const Vec3& x) {
         return on_shape(element, x);
+    };
+    settings_.rules.snap_to_shape = [this](const EditableMesh&, int32_t v, Vec3& x) {
+        if (const Shape* shape = v < geometry_.num_vertices() ? geometry_.shape_of(v) : nullptr) x = shape->project(x);
     };
 }
 
@@ -198,38 +178,15 @@ int32_t PhasedTopology::split_onto_shape(int32_t a, int32_t b, bool judged_after
     return m;
 }
 
-// Sec. 3.5.1's exclusions and position rules: never two corners, an edge
-// off the sharp edges between two of their vertices, or an interior edge
-// between two surface vertices; the endpoint of higher class stays, equal
-// classes meet at the midpoint (on their shape).  Returns the kept vertex.
+// Sec. 3.5.1's collapse (collapse_edge: its exclusions and position
+// rules, the midpoint snapped to the shape), kept only if the cylinder's
+// edges stay accurate.  Returns the kept vertex.
 int32_t PhasedTopology::collapse_by_rules(int32_t a, int32_t b) {
-    const VertexClass ca = mesh_.vertex_class(a), cb = mesh_.vertex_class(b);
-    const int ra = rank(ca), rb = rank(cb);
-    if (ra == 3 && rb == 3) return -1;                                         // (a)
-    if (ra >= 2 && rb >= 2 && !mesh_.is_feature_edge(a, b)) return -1;        // (b)
-    if (ra >= 1 && rb >= 1 && !mesh_.is_surface_edge(a, b)) return -1;        // (c)
-    const std::vector<int32_t> around = tets_around(mesh_, {a, b});
-    const double must_exceed = std::min(worst_sine(mesh_, around), std::sin(settings_.bad_angle_deg * kDegree));
+    const double must_exceed =
+        std::min(worst_sine(mesh_, tets_touching(mesh_, {a, b})), std::sin(settings_.bad_angle_deg * kDegree));
     const size_t mark = mesh_.checkpoint();
-    // Two surface or chain vertices meet at their midpoint only on a fitted
-    // shape (the midpoint then goes onto it); elsewhere b stays where it is.
-    if (ra != rb || (ra >= 1 && !geometry_.shape_of(b))) {
-        const int32_t keep = ra >= rb ? a : b, gone = ra >= rb ? b : a;
-        if (collapse_half_edge(mesh_, gone, keep, settings_.rules, must_exceed) && accurate_at(keep)) return keep;
-        mesh_.rollback(mark);
-        return -1;
-    }
-    Vec3 mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
-    if (const Shape* shape = geometry_.shape_of(b)) mid = shape->project(mid);
-    const std::vector<int32_t> star = mesh_.tets_of(b);
-    const TetLimits limits = limits_for(mesh_, star, settings_.rules, must_exceed);
-    mesh_.move_vertex(b, mid);
-    bool ok = true;
-    for (int32_t t : star) {
-        const Tet& q = mesh_.tet(t);
-        if (std::find(q.begin(), q.end(), a) == q.end()) ok = ok && acceptable_tet(mesh_.tet_points(t), limits);
-    }
-    if (ok && collapse_half_edge(mesh_, a, b, settings_.rules, must_exceed) && accurate_at(b)) return b;
+    const int32_t kept = collapse_edge(mesh_, a, b, settings_.rules, must_exceed);
+    if (kept >= 0 && accurate_at(kept)) return kept;
     mesh_.rollback(mark);
     return -1;
 }
@@ -423,7 +380,7 @@ int32_t PhasedTopology::remove_inverted() {
         for (const auto& e : kEdgeVertex)
             for (int dir = 0; dir < 2; ++dir) {
                 const int32_t gone = q[e[dir]], keep = q[e[1 - dir]];
-                const auto before = badness(mesh_, tets_around(mesh_, {gone, keep}));
+                const auto before = badness(mesh_, tets_touching(mesh_, {gone, keep}));
                 const size_t mark = mesh_.checkpoint();
                 if (collapse_half_edge(mesh_, gone, keep, untangle, 0.0)) {
                     const auto after = badness(mesh_, mesh_.tets_of(keep));
@@ -460,7 +417,7 @@ int32_t PhasedTopology::remove_degenerate() {
         const TetPoints p = mesh_.tet_points(t);
         const BadTet kind = classify_bad_tet(p, settings_.bad_angle_deg);
         const Tet q = mesh_.tet(t);
-        const std::vector<int32_t> region = tets_around(mesh_, {q[0], q[1], q[2], q[3]});
+        const std::vector<int32_t> region = tets_touching(mesh_, {q[0], q[1], q[2], q[3]});
         const double before = worst_sine(mesh_, region);
         const size_t mark = mesh_.checkpoint();
         int32_t kept = -1;
@@ -555,10 +512,9 @@ int32_t PhasedTopology::flip_surface() {
         const std::vector<int32_t> opp = surface_opposites(mesh_, a, b);
         if (opp.size() != 2) continue;
         const int32_t c = opp[0], d = opp[1];
-        const Vec3 &pa = mesh_.point(a), &pb = mesh_.point(b);
-        if (!(angle_at(mesh_.point(c), pa, pb) + angle_at(mesh_.point(d), pa, pb) > M_PI * (1.0 + 1e-9))) continue;
+        if (!edge_not_delaunay(mesh_.point(a), mesh_.point(b), mesh_.point(c), mesh_.point(d))) continue;
         if (is_edge(mesh_, c, d)) continue;  // the flipped edge exists already
-        const std::vector<int32_t> region = tets_around(mesh_, {a, b, c, d});
+        const std::vector<int32_t> region = tets_touching(mesh_, {a, b, c, d});
         const double before = worst_sine(mesh_, region);
         const size_t mark = mesh_.checkpoint();
         const int32_t m = split_onto_shape(a, b, true);
@@ -567,7 +523,7 @@ int32_t PhasedTopology::flip_surface() {
             if (done || m < 0) break;
             const size_t inner = mesh_.checkpoint();
             if (collapse_half_edge(mesh_, m, to, settings_.rules, 0.0) && accurate_at(to) &&
-                worst_sine(mesh_, tets_around(mesh_, {a, b, c, d})) >= before)
+                worst_sine(mesh_, tets_touching(mesh_, {a, b, c, d})) >= before)
                 done = true;
             else
                 mesh_.rollback(inner);

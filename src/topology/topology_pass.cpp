@@ -19,32 +19,6 @@ constexpr double kGain = 1e-12;
 // gets one.
 constexpr int kOdtRelocationRounds = 3;
 
-// The tets touching any of `vs`, each once.
-std::vector<int32_t> region_of(const EditableMesh& mesh, const std::vector<int32_t>& vs) {
-    std::vector<int32_t> out;
-    for (int32_t v : vs) out.insert(out.end(), mesh.tets_of(v).begin(), mesh.tets_of(v).end());
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-}
-
-// ODT's target for an interior vertex (paper 000 eq. 3): the
-// volume-weighted mean of the circumcentres of its star.
-bool odt_target(const EditableMesh& mesh, int32_t v, Vec3& target) {
-    if (mesh.vertex_class(v) != VertexClass::Interior) return false;
-    Vec3 sum = Vec3::Zero();
-    double volume = 0.0;
-    for (int32_t t : mesh.tets_of(v)) {
-        const TetPoints p = mesh.tet_points(t);
-        const double vol = signed_volume(p[0], p[1], p[2], p[3]);
-        sum += vol * circumcenter(p);
-        volume += vol;
-    }
-    if (!(volume > 0.0)) return false;
-    target = sum / volume;
-    return true;
-}
-
 // One guarded move of vertex v to the settings' relocation target, halved
 // until no tet of its star ends worse than the star's worst before.
 void relocate(EditableMesh& mesh, int32_t v, const TopologySettings& s) {
@@ -164,7 +138,7 @@ bool try_change(EditableMesh& mesh, int32_t t, const TopologySettings& settings,
     const TopologyRules& rules = settings.rules;
     const Tet q = mesh.tet(t);
     std::vector<int32_t> involved(q.begin(), q.end());
-    const std::vector<int32_t> region = region_of(mesh, involved);
+    const std::vector<int32_t> region = tets_touching(mesh, involved);
     std::vector<TetPoints> shapes_before;
     std::vector<Tet> quads_before;
     for (int32_t s : region) {
@@ -221,7 +195,7 @@ bool try_change(EditableMesh& mesh, int32_t t, const TopologySettings& settings,
         before = std::min(before, min_dihedral_sine(shapes_before[k]));
         widen(range_before, shapes_before[k]);
     }
-    for (int32_t s : region_of(mesh, involved)) {
+    for (int32_t s : tets_touching(mesh, involved)) {
         const auto k = std::lower_bound(region.begin(), region.end(), s) - region.begin();
         const bool old = s < old_capacity && k < static_cast<long>(region.size()) && region[k] == s;
         if (old && mesh.tet_points(s) == shapes_before[k]) continue;
