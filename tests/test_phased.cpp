@@ -609,7 +609,7 @@ void test_untangle(void**) {
     const std::set<FaceKey> faces = boundary_faces(mesh);
 
     GeometryModel g = extract(mesh);
-    EditableMesh em(mesh, g.vertex_classes());
+    EditableMesh em(mesh, g.vertex_classes(mesh));
     bodt::PhasedTopology topo(em, g, bodt::PhasedTopologySettings{});
     const int32_t removed = topo.remove_inverted();
     const TetMesh out = written(em);
@@ -667,7 +667,7 @@ void check_degenerate_removed(const Small& s) {
     const double worst0 = min_dihedral(mesh);
     CHECK(bad0 > 0, "no bad tet");
     GeometryModel g = extract(mesh);
-    EditableMesh em(mesh, g.vertex_classes());
+    EditableMesh em(mesh, g.vertex_classes(mesh));
     bodt::PhasedTopology topo(em, g, bodt::PhasedTopologySettings{});
     const int32_t removed = topo.remove_degenerate();
     const TetMesh out = written(em);
@@ -717,7 +717,7 @@ void test_density_split(void**) {
     const double hh = 1.0 / n;
     const TetMesh mesh = build(box(n));
     GeometryModel g = extract(mesh);
-    EditableMesh em(mesh, g.vertex_classes());
+    EditableMesh em(mesh, g.vertex_classes(mesh));
     bodt::PhasedTopologySettings settings;
     bodt::PhasedTopology topo(em, g, settings);
     const bodt::DensityGrid grid = constant_grid(2.0 / hh);
@@ -747,7 +747,7 @@ void test_density_collapse(void**) {
         GeometryModel g = extract(mesh);
         for (int32_t v = 0; v < mesh.num_vertices(); ++v)
             CHECK(g.vertex_class(v) == VertexClass::Corner, "vertex %d is class %d", v, static_cast<int>(g.vertex_class(v)));
-        EditableMesh em(mesh, g.vertex_classes());
+        EditableMesh em(mesh, g.vertex_classes(mesh));
         bodt::PhasedTopology topo(em, g, bodt::PhasedTopologySettings{});
         const bodt::DensityGrid grid = constant_grid(0.3);
         bodt::PhasedTopologyCounts counts;
@@ -765,7 +765,7 @@ void test_density_collapse(void**) {
     for (int32_t v = 0; v < mesh.num_vertices(); ++v)
         if (g.vertex_class(v) == VertexClass::Corner) corners.push_back(v);
     CHECK(corners.size() == 8, "%zu corners", corners.size());
-    EditableMesh em(mesh, g.vertex_classes());
+    EditableMesh em(mesh, g.vertex_classes(mesh));
     // Collapses only: the grid also wants the box's face diagonals (1.41
     // against 0.83) split, which would take corner-corner edges away too.
     bodt::PhasedTopologySettings settings;
@@ -837,7 +837,7 @@ void test_surface_flip(void**) {
     const Vec3 &pa = mesh.points[ea], &pb = mesh.points[eb];
     CHECK(angle_at(mesh.points[c], pa, pb) + angle_at(mesh.points[d], pa, pb) > kPi + 0.1, "the pair is Delaunay");
     GeometryModel g = extract(mesh);
-    EditableMesh em(mesh, g.vertex_classes());
+    EditableMesh em(mesh, g.vertex_classes(mesh));
     CHECK(!em.tets_holding({ea, eb}).empty() && em.tets_holding({c, d}).empty(), "unexpected starting edges");
     const double worst0 = min_dihedral(mesh);
     bodt::PhasedTopology topo(em, g, bodt::PhasedTopologySettings{});

@@ -17,16 +17,6 @@ bodt_geometry_class geometry_class(bodt::VertexClass c) {
     }
 }
 
-// A fixed vertex keeps the class of where it lies: the geometry model marks
-// it Fixed, so it is classed by the faces and sharp edges around it.
-bodt_geometry_class fixed_vertex_class(const bodt_mesh* h, int32_t v) {
-    const bodt::TetMesh& m = h->mesh;
-    if (!(m.vflags[v] & (bodt::kOnBoundary | bodt::kOnInterface))) return BODT_GEOMETRY_INTERIOR;
-    int sharp = 0;
-    for (bodt::EdgeKey k : h->improver.geometry(m).sharp_edges()) sharp += bodt::edge_first(k) == v || bodt::edge_second(k) == v;
-    return sharp == 0 ? BODT_GEOMETRY_SURFACE : sharp == 2 ? BODT_GEOMETRY_SHARP_EDGE : BODT_GEOMETRY_CORNER;
-}
-
 int32_t region_index(const bodt_mesh* h, int32_t region) {
     const int32_t r = region - h->index_base;
     const auto& regions = h->improver.geometry(h->mesh).regions();
@@ -54,9 +44,7 @@ int bodt_mesh_get_geometry_classes(const bodt_mesh* mesh, int32_t* classes, size
         require(classes != nullptr, "classes is NULL");
         require_capacity(capacity, mesh->mesh.points.size(), "classes");
         const bodt::GeometryModel& g = mesh->improver.geometry(mesh->mesh);
-        for (int32_t v = 0; v < mesh->mesh.num_vertices(); ++v)
-            classes[v] = g.vertex_class(v) == bodt::VertexClass::Fixed ? fixed_vertex_class(mesh, v)
-                                                                      : geometry_class(g.vertex_class(v));
+        for (int32_t v = 0; v < mesh->mesh.num_vertices(); ++v) classes[v] = geometry_class(g.vertex_class(v));
     });
 }
 

@@ -246,19 +246,8 @@ GeometryModel GeometryModel::extract(const TetMesh& mesh, const GeometrySettings
         }
         g.chains_.push_back(std::move(chain));
     }
-    for (int32_t v = 0; v < nv; ++v) {
-        if (mesh.vflags[v] & kUnused) {
-            g.cls_[v] = VertexClass::Unused;
-        } else if (mesh.vflags[v] & kFixed) {
-            // A fixed vertex keeps its regions and chains, as a corner does.
-            if (g.cls_[v] == VertexClass::Surface || g.cls_[v] == VertexClass::FeatureLine) {
-                g.corner_regions_[v] = g.regions_at(v);
-                if (g.cls_[v] == VertexClass::FeatureLine) g.corner_chains_[v] = {g.entity_[v]};
-            }
-            g.cls_[v] = VertexClass::Fixed;
-            g.entity_[v] = -1;
-        }
-    }
+    for (int32_t v = 0; v < nv; ++v)
+        if (mesh.vflags[v] & kUnused) g.cls_[v] = VertexClass::Unused;
     return g;
 }
 
@@ -304,13 +293,14 @@ const Shape* GeometryModel::shape_of(int32_t v) const {
     return s && s->type != ShapeType::None ? s : nullptr;
 }
 
-VertexClasses GeometryModel::vertex_classes() const {
+VertexClasses GeometryModel::vertex_classes(const TetMesh& mesh) const {
     VertexClasses out;
-    out.cls = cls_;
-    for (int32_t v = 0; v < num_vertices(); ++v)
-        if ((cls_[v] == VertexClass::Surface || cls_[v] == VertexClass::FeatureLine) && !shape_of(v))
+    out.cls.assign(cls_.begin(), cls_.begin() + mesh.num_vertices());
+    for (int32_t v = 0; v < mesh.num_vertices(); ++v)
+        if ((mesh.vflags[v] & kFixed) ||
+            ((cls_[v] == VertexClass::Surface || cls_[v] == VertexClass::FeatureLine) && !shape_of(v)))
             out.cls[v] = VertexClass::Fixed;
-    out.line.assign(cls_.size(), {-1, -1});
+    out.line.assign(out.cls.size(), {-1, -1});
     out.feature_edges = sharp_;
     return out;
 }
@@ -355,6 +345,12 @@ void GeometryModel::set(int32_t v, VertexClass cls, int32_t entity) {
     entity_[v] = entity;
 }
 
+void GeometryModel::truncate(int32_t n) {
+    if (n >= num_vertices()) return;
+    cls_.resize(static_cast<size_t>(n));
+    entity_.resize(static_cast<size_t>(n));
+}
+
 void GeometryModel::follow(const EditableMesh& edited, const std::vector<int32_t>& renumber, const TetMesh& written) {
     for (int32_t v = num_vertices(); v < edited.num_vertices(); ++v) set(v, edited.vertex_class(v), resolve(edited, v));
     std::vector<VertexClass> cls(static_cast<size_t>(written.num_vertices()), VertexClass::Unused);
@@ -362,7 +358,7 @@ void GeometryModel::follow(const EditableMesh& edited, const std::vector<int32_t
     for (int32_t v = 0; v < edited.num_vertices(); ++v) {
         const int32_t to = renumber[v];
         if (to < 0) continue;
-        // A vertex the editable mesh fixed because its shape is None keeps its own class.
+        // A vertex the editable mesh held Fixed keeps its geometric class.
         cls[to] = edited.vertex_class(v) == VertexClass::Fixed ? cls_[v] : edited.vertex_class(v);
         entity[to] = entity_[v];
     }

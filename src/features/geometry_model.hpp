@@ -58,8 +58,9 @@ public:
     std::vector<SurfaceRegion>& regions() { return regions_; }
     const std::vector<SharpChain>& chains() const { return chains_; }
 
-    // Interior, Surface (in a region), FeatureLine (on a chain), Corner,
-    // Fixed, Unused.
+    // Where v lies: Interior, Surface (in a region), FeatureLine (on a
+    // chain), Corner or Unused; a fixed vertex too.  Which vertices stay is
+    // vertex_classes' business.
     VertexClass vertex_class(int32_t v) const { return cls_[v]; }
     // The region of a Surface vertex, the chain of a FeatureLine vertex; -1
     // otherwise.
@@ -77,9 +78,11 @@ public:
     // corners, fixed and interior vertices.
     const Shape* shape_of(int32_t v) const;
 
-    // The classes the topology operations work with: Fixed where a vertex
-    // lies in a region or chain that nothing fits (it must not move).
-    VertexClasses vertex_classes() const;
+    // The classes the topology operations work with, one per vertex of
+    // `mesh` (the model may hold more: vertices of changes not kept): Fixed
+    // where the caller fixed a vertex or it lies in a region or chain that
+    // nothing fits (it must not move).
+    VertexClasses vertex_classes(const TetMesh& mesh) const;
 
     // After an EditableMesh (made with vertex_classes()) changed the
     // connectivity and wrote itself back with `renumber` (old index -> new,
@@ -92,20 +95,16 @@ public:
     int32_t resolve(const EditableMesh& mesh, int32_t v) const;
     // Records v's entity (growing the arrays for a made vertex).
     void set(int32_t v, VertexClass cls, int32_t entity);
-    // Forgets the vertices from `n` on (made by changes that were not kept).
-    void truncate(int32_t n) {
-        if (n < num_vertices()) {
-            cls_.resize(static_cast<size_t>(n));
-            entity_.resize(static_cast<size_t>(n));
-        }
-    }
+    // Forgets the vertices from `n` on: those of changes that were rolled
+    // back or never written, whose indices a new change may reuse.
+    void truncate(int32_t n);
 
 private:
     std::vector<SurfaceRegion> regions_;
     std::vector<SharpChain> chains_;
     std::vector<VertexClass> cls_;
     std::vector<int32_t> entity_;
-    // Corners and fixed vertices: the regions around them, the chains at them.
+    // Corners: the regions around them, the chains at them.
     std::unordered_map<int32_t, std::vector<int32_t>> corner_regions_;
     std::unordered_map<int32_t, std::vector<int32_t>> corner_chains_;
     // Faces with no vertex inside a region (all on chains, at corners or

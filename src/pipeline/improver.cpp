@@ -49,7 +49,7 @@ void Improver::set_param_double(int key, double value) {
 
 const VertexClasses& Improver::classes(const TetMesh& mesh, const RegionSurfaces& surfaces) const {
     if (!classes_valid_ && mode_ == BODT_MODE_PHASED_ODT) {
-        classes_ = geometry(mesh).vertex_classes();
+        classes_ = geometry(mesh).vertex_classes(mesh);
         classes_valid_ = true;
     }
     if (!classes_valid_) {

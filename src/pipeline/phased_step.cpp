@@ -38,14 +38,20 @@ void write_back(EditableMesh& editable, TetMesh& mesh, RegionSurfaces& surfaces,
     geometry.follow(editable, renumber, mesh);
 }
 
-// The EditableMesh of a phased step: inverted tets in the order of their
-// neighbours (negative volume), so that untangling sees them as they are.
-TetMesh consistently_ordered(const TetMesh& mesh) {
-    TetMesh copy = mesh;
-    for (size_t t = 0; t < copy.reversed.size(); ++t)
-        if (copy.reversed[t]) std::swap(copy.tets[t][2], copy.tets[t][3]);
-    copy.reversed.clear();
-    return copy;
+// The EditableMesh of a phased pass, with the geometry trimmed to the
+// mesh (vertices of changes not written are forgotten).  Inverted tets come
+// in the order of their neighbours (negative volume), so that untangling
+// sees them as they are; the mesh is copied only when a tet is reversed.
+EditableMesh phased_editable(const TetMesh& mesh, GeometryModel& geometry) {
+    geometry.truncate(mesh.num_vertices());
+    const VertexClasses classes = geometry.vertex_classes(mesh);
+    if (std::find(mesh.reversed.begin(), mesh.reversed.end(), uint8_t{1}) == mesh.reversed.end())
+        return EditableMesh(mesh, classes);
+    TetMesh ordered = mesh;
+    for (size_t t = 0; t < ordered.reversed.size(); ++t)
+        if (ordered.reversed[t]) std::swap(ordered.tets[t][2], ordered.tets[t][3]);
+    ordered.reversed.clear();
+    return EditableMesh(ordered, classes);
 }
 
 }  // namespace
@@ -168,8 +174,7 @@ void Improver::step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& 
     settings.flip = bits & BODT_OP_FLIP;
 
     if (settings.split || settings.collapse) {
-        const TetMesh ordered = consistently_ordered(mesh);
-        EditableMesh editable(ordered, geometry.vertex_classes());
+        EditableMesh editable = phased_editable(mesh, geometry);
         PhasedTopology topology(editable, geometry, settings);
         PhasedTopologyCounts counts;
         counts.untangling_moves = topology.untangle_by_moves();
@@ -180,8 +185,6 @@ void Improver::step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& 
         if (counts.changed() || counts.untangling_moves > 0) {
             write_back(editable, mesh, surfaces, geometry);
             classes_valid_ = false;
-        } else {
-            geometry.truncate(mesh.num_vertices());
         }
         report.vertices_inserted += counts.splits + counts.degenerate_removed;
         report.edges_collapsed += counts.collapses + counts.inverted_removed + counts.degenerate_removed;
@@ -189,8 +192,7 @@ void Improver::step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& 
     }
     if (bits & BODT_OP_SMOOTH) sweep_phased(mesh, report);
     if (settings.flip) {
-        const TetMesh ordered = consistently_ordered(mesh);
-        EditableMesh editable(ordered, geometry.vertex_classes());
+        EditableMesh editable = phased_editable(mesh, geometry);
         PhasedTopology topology(editable, geometry, settings);
         int32_t flips = topology.flip_surface();
         // Sec. 3.4.4: 2-3, 3-2 and 4-4 flips inside, under the Delaunay conditions.
@@ -206,8 +208,6 @@ void Improver::step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& 
         if (flips > 0) {
             write_back(editable, mesh, surfaces, geometry);
             classes_valid_ = false;
-        } else {
-            geometry.truncate(mesh.num_vertices());
         }
         report.flips += flips;
     }

@@ -310,16 +310,24 @@ int32_t PhasedTopology::untangle_by_moves() {
     int32_t moves = 0;
     for (int rings : {1, 2, 4})
         if (relax_tangled_region(mesh_, rings, 10 * rings)) ++moves;
-    std::vector<int32_t> around;
+    std::vector<int32_t> around, tangled;
     for (int round = 0; round < kRounds; ++round) {
+        // The vertices of tets with stretch <= 0, each once.
+        tangled.clear();
+        for (int32_t t = 0; t < mesh_.tet_capacity(); ++t)
+            if (mesh_.alive(t) && stretch(mesh_.tet_points(t)) <= 0.0)
+                tangled.insert(tangled.end(), mesh_.tet(t).begin(), mesh_.tet(t).end());
+        std::sort(tangled.begin(), tangled.end());
+        tangled.erase(std::unique(tangled.begin(), tangled.end()), tangled.end());
         int32_t moved = 0;
-        for (int32_t v = 0; v < mesh_.num_vertices(); ++v) {
+        for (int32_t v : tangled) {
             // Interior vertices anywhere; surface and chain vertices on their
             // fitted shape, towards their neighbours on it.
             const VertexClass cls = mesh_.vertex_class(v);
             const Shape* shape = v < geometry_.num_vertices() ? geometry_.shape_of(v) : nullptr;
-            if (mesh_.tets_of(v).empty() || (cls != VertexClass::Interior && !shape)) continue;
-            const std::vector<int32_t> star = mesh_.tets_of(v);
+            const bool on_shape = (cls == VertexClass::Surface || cls == VertexClass::FeatureLine) && shape;
+            if (cls != VertexClass::Interior && !on_shape) continue;
+            const std::vector<int32_t>& star = mesh_.tets_of(v);  // moves leave it as it is
             const auto before = badness(mesh_, star);
             if (before.first == 0) continue;
             mesh_.neighbors(v, around);
