@@ -119,25 +119,10 @@ int bodt_mesh_recovery_error(const bodt_mesh* mesh, bodt_recovery_error* error) 
             full.density_max = d.max;
             full.density_edges = d.edges;
         }
-        // Sec. 3.3: the edges of the faces on cylinders, each once.
-        const bodt::GeometryModel& g = mesh->improver.geometry(mesh->mesh);
-        const auto& p = mesh->mesh.points;
-        bodt::EdgeSet seen;
-        double sum = 0.0;
-        for (const bodt::SurfaceFace& f : mesh->mesh.surface_faces()) {
-            const auto& v = f.v;
-            const int32_t r = g.face_region(v[0], v[1], v[2], (p[v[0]] + p[v[1]] + p[v[2]]) / 3.0);
-            if (r < 0 || g.regions()[r].shape.type != bodt::ShapeType::Cylinder) continue;
-            for (int i = 0; i < 3; ++i) {
-                const int32_t a = v[i], b = v[(i + 1) % 3];
-                if (!seen.insert(bodt::edge_key(a, b)).second) continue;
-                const double e = g.regions()[r].shape.distance(0.5 * (p[a] + p[b]));
-                sum += e;
-                full.geometric_max = std::max(full.geometric_max, e);
-                ++full.geometric_edges;
-            }
-        }
-        if (full.geometric_edges) full.geometric_mean = sum / static_cast<double>(full.geometric_edges);
+        const bodt::GeometryModel::GeometricError g = mesh->improver.geometry(mesh->mesh).geometric_error(mesh->mesh);
+        full.geometric_mean = g.mean;
+        full.geometric_max = g.max;
+        full.geometric_edges = g.edges;
         fill_sized(error, full);
     });
 }

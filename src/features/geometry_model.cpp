@@ -293,6 +293,28 @@ const Shape* GeometryModel::shape_of(int32_t v) const {
     return s && s->type != ShapeType::None ? s : nullptr;
 }
 
+GeometryModel::GeometricError GeometryModel::geometric_error(const TetMesh& mesh) const {
+    GeometricError out;
+    const auto& p = mesh.points;
+    EdgeSet seen;
+    double sum = 0.0;
+    for (const SurfaceFace& f : mesh.surface_faces()) {
+        const auto& v = f.v;
+        const int32_t r = face_region(v[0], v[1], v[2], (p[v[0]] + p[v[1]] + p[v[2]]) / 3.0);
+        if (r < 0 || regions_[r].shape.type != ShapeType::Cylinder) continue;
+        for (int i = 0; i < 3; ++i) {
+            const int32_t a = v[i], b = v[(i + 1) % 3];
+            if (!seen.insert(edge_key(a, b)).second) continue;
+            const double e = regions_[r].shape.distance(0.5 * (p[a] + p[b]));
+            sum += e;
+            out.max = std::max(out.max, e);
+            ++out.edges;
+        }
+    }
+    if (out.edges) out.mean = sum / static_cast<double>(out.edges);
+    return out;
+}
+
 VertexClasses GeometryModel::vertex_classes(const TetMesh& mesh) const {
     VertexClasses out;
     out.cls.assign(cls_.begin(), cls_.begin() + mesh.num_vertices());

@@ -78,6 +78,14 @@ public:
     // corners, fixed and interior vertices.
     const Shape* shape_of(int32_t v) const;
 
+    // Sec. 3.3's geometric error of `mesh`: the distance of the midpoint of
+    // each edge of a face on a cylinder from that cylinder (each edge once).
+    struct GeometricError {
+        double mean = 0.0, max = 0.0;
+        int64_t edges = 0;
+    };
+    GeometricError geometric_error(const TetMesh& mesh) const;
+
     // The classes the topology operations work with, one per vertex of
     // `mesh` (the model may hold more: vertices of changes not kept): Fixed
     // where the caller fixed a vertex or it lies in a region or chain that

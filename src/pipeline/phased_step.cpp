@@ -38,6 +38,13 @@ void write_back(EditableMesh& editable, TetMesh& mesh, RegionSurfaces& surfaces,
     geometry.follow(editable, renumber, mesh);
 }
 
+GeometrySettings geometry_settings(const Params& params) {
+    GeometrySettings settings;
+    settings.feature_angle_deg = params.feature_angle;
+    settings.fit_tolerance = params.fit_tolerance;
+    return settings;
+}
+
 // The EditableMesh of a phased pass, with the geometry trimmed to the
 // mesh (vertices of changes not written are forgotten).  Inverted tets come
 // in the order of their neighbours (negative volume), so that untangling
@@ -58,10 +65,7 @@ EditableMesh phased_editable(const TetMesh& mesh, GeometryModel& geometry) {
 
 const GeometryModel& Improver::geometry(const TetMesh& mesh) const {
     if (!geometry_valid_) {
-        GeometrySettings settings;
-        settings.feature_angle_deg = params_.feature_angle;
-        settings.fit_tolerance = params_.fit_tolerance;
-        geometry_ = GeometryModel::extract(mesh, settings, reference_points_);
+        geometry_ = GeometryModel::extract(mesh, geometry_settings(params_), reference_points_);
         geometry_valid_ = true;
         apply_reference_errors();
     }
@@ -107,22 +111,12 @@ void Improver::set_reference(const TetMesh& reference, const TetMesh& mesh) {
     }
     DensityGrid grid = DensityGrid::interpolate(mesh, density, mean_edge_length(mesh));
 
-    GeometrySettings settings;
-    settings.feature_angle_deg = params_.feature_angle;
-    settings.fit_tolerance = params_.fit_tolerance;
-    const GeometryModel ref = GeometryModel::extract(reference, settings);
-    std::vector<double> region_error(ref.regions().size(), 0.0);
-    for (const SurfaceFace& f : reference.surface_faces()) {
-        const Vec3 &a = reference.points[f.v[0]], &b = reference.points[f.v[1]], &c = reference.points[f.v[2]];
-        const int32_t r = ref.face_region(f.v[0], f.v[1], f.v[2], (a + b + c) / 3.0);
-        if (r < 0 || ref.regions()[r].shape.type != ShapeType::Cylinder) continue;
-        const Shape& s = ref.regions()[r].shape;
-        for (const auto& [p, q] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
-            region_error[r] = std::max(region_error[r], s.distance(0.5 * (p + q)));
-    }
+    // A reference cylinder's own error (as extracted) is the acceptable one.
+    const GeometryModel ref = GeometryModel::extract(reference, geometry_settings(params_));
     std::vector<double> acceptable(static_cast<size_t>(reference.num_vertices()), 0.0);
     for (int32_t v = 0; v < reference.num_vertices(); ++v)
-        if (ref.vertex_class(v) == VertexClass::Surface && ref.entity(v) >= 0) acceptable[v] = region_error[ref.entity(v)];
+        if (ref.vertex_class(v) == VertexClass::Surface && ref.entity(v) >= 0)
+            acceptable[v] = ref.regions()[ref.entity(v)].own_error;
 
     density_ = std::move(grid);
     vertex_acceptable_ = std::move(acceptable);
