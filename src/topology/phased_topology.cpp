@@ -14,6 +14,16 @@ namespace {
 
 constexpr double kDegree = M_PI / 180.0;
 
+// What one midpoint split costs a regular tet: the stretch of its halves
+// (about 0.71), the most a recovery change may cost the mesh's worst tet.
+double regular_split_stretch() {
+    static const double halves = [] {
+        const Vec3 a(1, 1, 1), b(1, -1, -1), c(-1, 1, -1), d(-1, -1, 1);
+        return stretch({a, 0.5 * (a + b), c, d}) / stretch({a, b, c, d});
+    }();
+    return halves;
+}
+
 // The distinct edges of the surface faces, in a fixed order.
 std::vector<std::array<int32_t, 2>> surface_edges(const EditableMesh& mesh) {
     EdgeSet seen;
@@ -470,11 +480,8 @@ void PhasedTopology::recover(const DensityGrid* density, PhasedTopologyCounts& c
     for (int32_t t = 0; t < mesh_.tet_capacity(); ++t)
         if (mesh_.alive(t)) worst = std::min(worst, stretch(mesh_.tet_points(t)));
     if (!(worst > 0.0)) return;
-    // A recovery change may cost the worst tet what one midpoint split of
-    // a regular tet costs its halves (stretch 1 -> 0.71), no more.
-    constexpr double kSplitLoss = 0.7;
     const double floor = settings_.rules.min_stretch;
-    settings_.rules.min_stretch = std::max(floor, kSplitLoss * worst);
+    settings_.rules.min_stretch = std::max(floor, regular_split_stretch() * worst);
     // Geometric accuracy: surface edges of a cylinder too far from it.
     if (settings_.split) {
         for (const auto& [a, b] : surface_edges(mesh_)) {

@@ -53,8 +53,9 @@ public:
     // Sec. 3.5.1: surface edges of a cylinder further from it than the
     // region's acceptable error are split onto it; edges are split where
     // 1/|e| < gamma rho' and collapsed where 1/|e| > delta rho'.  Only on
-    // a mesh without inverted or flat tets, and no tet made is below 0.7
-    // times the mesh's worst stretch (or the tets it replaces).
+    // a mesh without inverted or flat tets, and no tet made is below the
+    // mesh's worst stretch times what a midpoint split costs a regular tet
+    // (about 0.71), or below the tets it replaces.
     void recover(const DensityGrid* density, PhasedTopologyCounts& counts);
     // Sec. 3.4.3: surface edges that are not locally Delaunay flipped by a
     // split and the collapse of the new vertex into an opposite one.
