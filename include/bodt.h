@@ -75,12 +75,15 @@ BODT_API const char *bodt_status_string(int status);
 
 typedef struct bodt_mesh bodt_mesh;
 
-/* Flags for bodt_mesh_create_ex(). */
+/* Flags for bodt_mesh_create_ex() and bodt_mesh_read_ex(). */
 enum bodt_create_flag {
     BODT_CREATE_DEFAULT = 0,
     /* Accept inverted tets (for untangling modes); zero-volume tets are
      * still refused. */
-    BODT_CREATE_ACCEPT_INVERTED = 1
+    BODT_CREATE_ACCEPT_INVERTED = 1,
+    /* bodt_mesh_read_ex() only: the handle counts from 1 (Fortran) instead
+     * of 0.  bodt_mesh_create_ex() refuses it: its index_base says. */
+    BODT_CREATE_ONE_BASED = 2
 };
 
 /*
@@ -614,7 +617,8 @@ BODT_API int bodt_mesh_recovery_error(const bodt_mesh *mesh,
  *   .node / .ele   TetGen (give either; the other and an optional .face with
  *                  markers are found beside it).  0- and 1-based files.  The
  *                  format has no fixed vertices.
- * The handle's index base is 0.  On failure, bodt_mesh_last_error(NULL)
+ * The handle's index base is 0 (1 with bodt_mesh_read_ex and
+ * BODT_CREATE_ONE_BASED).  On failure, bodt_mesh_last_error(NULL)
  * says why: BODT_ERR_IO for a file that cannot be read or parsed (with the
  * line number), BODT_ERR_BAD_MESH for a parsed mesh that is not valid (with
  * the entities in the file's own numbering).

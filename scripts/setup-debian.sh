@@ -13,7 +13,11 @@ packages=(
   libopenmesh-dev   # BSD-3-Clause, used by the core
   libcmocka-dev     # Apache-2.0, unit tests
   libtet1.5-dev     # AGPL-3, command-line tool and tests only (never libbodt.so)
+  gfortran          # the Fortran module (bindings/fortran) and its tests
   python3           # tests may parse JSON with /usr/bin/python3
+  python3-numpy     # the Python package (bindings/python) and its tests
+  python3-cffi      # the test that loads the installed bodt.h with cffi
+  abigail-tools     # abidiff: the ABI check against tests/consumers/libbodt.abi
 )
 
 if ! command -v dpkg-query >/dev/null 2>&1; then

@@ -340,24 +340,27 @@ static void test_tetgen_negative_orientation(void **state) {
     bodt_mesh_destroy(h);
 }
 
-/* Sections that are skipped, comments, Corners and RequiredVertices. */
+/* A unit cube, hand-written: sections that are skipped, comments, Corners
+ * and RequiredVertices. */
+static const char cube_mesh[] =
+    "MeshVersionFormatted 1\n"
+    "# a unit cube, hand-written\n"
+    "Dimension\n3\n"
+    "Vertices\n8\n"
+    "0 0 0 1\n1 0 0 1\n0 1 0 1\n1 1 0 1\n0 0 1 1\n1 0 1 1\n0 1 1 1\n1 1 1 1\n"
+    "Edges # skipped\n1\n1 2 0\n"
+    "Corners\n1\n1\n"
+    "Triangles\n2\n1 2 4 5\n1 4 3 6\n"
+    "Tetrahedra\n6\n"
+    "1 2 4 8 3\n1 3 7 8 3\n1 5 6 8 3\n1 2 8 6 3\n1 3 8 4 3\n1 5 8 7 3\n"
+    "RequiredVertices\n1\n8\n"
+    "Normals\n1\n0 0 1\n"
+    "End\n";
+
 static void test_medit_handwritten(void **state) {
     (void)state;
     const char *path = path_of("cube.mesh");
-    write_text(path,
-               "MeshVersionFormatted 1\n"
-               "# a unit cube, hand-written\n"
-               "Dimension\n3\n"
-               "Vertices\n8\n"
-               "0 0 0 1\n1 0 0 1\n0 1 0 1\n1 1 0 1\n0 0 1 1\n1 0 1 1\n0 1 1 1\n1 1 1 1\n"
-               "Edges # skipped\n1\n1 2 0\n"
-               "Corners\n1\n1\n"
-               "Triangles\n2\n1 2 4 5\n1 4 3 6\n"
-               "Tetrahedra\n6\n"
-               "1 2 4 8 3\n1 3 7 8 3\n1 5 6 8 3\n1 2 8 6 3\n1 3 8 4 3\n1 5 8 7 3\n"
-               "RequiredVertices\n1\n8\n"
-               "Normals\n1\n0 0 1\n"
-               "End\n");
+    write_text(path, cube_mesh);
     bodt_mesh *h = read_ok(path, 0);
     int32_t fixed[8], regions[6], nbf;
     assert_int_equal(bodt_mesh_get_fixed_vertices(h, fixed, 8), BODT_OK);
@@ -372,6 +375,44 @@ static void test_medit_handwritten(void **state) {
     for (int f = 0; f < 12; ++f) sum += markers[f];
     assert_int_equal(sum, 11);
     bodt_mesh_destroy(h);
+}
+
+/* BODT_CREATE_ONE_BASED: the same file read into a handle that counts from 1
+ * gives every index one higher, takes 1-based indices, names them 1-based;
+ * bodt_mesh_create_ex refuses the flag. */
+static void test_read_one_based(void **state) {
+    (void)state;
+    const char *path = path_of("cube_one_based.mesh");
+    write_text(path, cube_mesh);
+    bodt_mesh *zero = read_ok(path, 0), *one = read_ok(path, BODT_CREATE_ONE_BASED);
+    int32_t tets0[24], tets1[24], tris0[36], tris1[36], origins[6];
+    assert_int_equal(bodt_mesh_get_tets(zero, tets0, 24), BODT_OK);
+    assert_int_equal(bodt_mesh_get_tets(one, tets1, 24), BODT_OK);
+    for (int k = 0; k < 24; ++k) assert_int_equal(tets1[k], tets0[k] + 1);
+    assert_int_equal(bodt_mesh_get_boundary_faces(zero, tris0, NULL, 12), BODT_OK);
+    assert_int_equal(bodt_mesh_get_boundary_faces(one, tris1, NULL, 12), BODT_OK);
+    for (int k = 0; k < 36; ++k) assert_int_equal(tris1[k], tris0[k] + 1);
+    assert_int_equal(bodt_mesh_get_tet_origins(one, origins, 6), BODT_OK);
+    for (int t = 0; t < 6; ++t) assert_int_equal(origins[t], t + 1);
+    const int32_t fixed[] = {8};
+    assert_int_equal(bodt_mesh_set_fixed_vertices(one, 1, fixed), BODT_OK);
+    const int32_t zero_index[] = {0};
+    assert_int_equal(bodt_mesh_set_fixed_vertices(one, 1, zero_index), BODT_ERR_INVALID_ARGUMENT);
+    assert_contains(bodt_mesh_last_error(one), "fixed vertex 1 uses vertex 0, but the mesh has 8 vertices (numbered from 1)");
+    /* Read with both flags. */
+    bodt_mesh *both = read_ok(path, BODT_CREATE_ONE_BASED | BODT_CREATE_ACCEPT_INVERTED);
+    assert_int_equal(bodt_mesh_get_tets(both, tets1, 24), BODT_OK);
+    for (int k = 0; k < 24; ++k) assert_int_equal(tets1[k], tets0[k] + 1);
+    bodt_mesh_destroy(both);
+    bodt_mesh_destroy(one);
+    bodt_mesh_destroy(zero);
+
+    bodt_mesh *h = (bodt_mesh *)&h;
+    const double xyz[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const int32_t tet[] = {1, 2, 3, 4};
+    assert_int_equal(bodt_mesh_create_ex(4, xyz, 1, tet, 1, BODT_CREATE_ONE_BASED, &h), BODT_ERR_INVALID_ARGUMENT);
+    assert_null(h);
+    assert_contains(bodt_mesh_last_error(NULL), "index_base");
 }
 
 /* Medit Ridges (indices into Edges) are the mesh's feature edges; they are
@@ -732,6 +773,7 @@ int main(void) {
         cmocka_unit_test(test_tetgen_handwritten_bases),
         cmocka_unit_test(test_tetgen_negative_orientation),
         cmocka_unit_test(test_medit_handwritten),
+        cmocka_unit_test(test_read_one_based),
         cmocka_unit_test(test_medit_ridges),
         cmocka_unit_test(test_read_inverted_flag),
         cmocka_unit_test(test_medit_good_reference),

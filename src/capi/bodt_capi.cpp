@@ -175,8 +175,10 @@ bodt::MeshData to_mesh_data(const bodt_mesh* h) {
 
 // A handle for a mesh read from a file.  Problems with the mesh itself are
 // BODT_ERR_BAD_MESH, named in the file's own numbering; the handle then
-// counts from 0, as documented for bodt_mesh_read.
+// counts from 0, or from 1 with BODT_CREATE_ONE_BASED.
 bodt_mesh* from_mesh_data(const bodt::MeshData& d, uint32_t flags) {
+    const int handle_base = (flags & BODT_CREATE_ONE_BASED) ? 1 : 0;
+    flags &= ~static_cast<uint32_t>(BODT_CREATE_ONE_BASED);
     if (d.xyz.size() / 3 > INT32_MAX || d.tets.size() / 4 > INT32_MAX)
         throw Error(BODT_ERR_UNSUPPORTED, "the mesh has more than 2^31 - 1 vertices or tets");
     if (d.tets.empty()) throw Error(BODT_ERR_BAD_MESH, "the file has no tets");
@@ -194,7 +196,7 @@ bodt_mesh* from_mesh_data(const bodt::MeshData& d, uint32_t flags) {
                            d.tri_markers.data());
         apply_fixed(h.get(), static_cast<int32_t>(d.fixed.size()), d.fixed.data());
         apply_feature_edges(h.get(), static_cast<int32_t>(d.feature_edges.size() / 2), d.feature_edges.data());
-        h->index_base = 0;
+        h->index_base = handle_base;
         return h.release();
     } catch (const Error& e) {
         if (e.status() == BODT_ERR_INVALID_ARGUMENT) throw Error(BODT_ERR_BAD_MESH, e.what());
@@ -243,6 +245,8 @@ int bodt_mesh_create_ex(int32_t nverts, const double* xyz, int32_t ntets, const 
     *mesh = nullptr;
     bodt_mesh* created = nullptr;
     const int status = guarded(nullptr, [&] {
+        require(!(flags & BODT_CREATE_ONE_BASED),
+                "BODT_CREATE_ONE_BASED is for bodt_mesh_read_ex; bodt_mesh_create_ex takes index_base");
         bodt::MeshArrays arrays;
         arrays.nverts = nverts;
         arrays.xyz = xyz;

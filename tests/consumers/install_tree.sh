@@ -2,7 +2,8 @@
 # Installs BUILD_DIR with `cmake --install --prefix PREFIX` (a scratch
 # directory in the build tree, never the system prefix) and checks the tree.
 # Environment: CMAKE BUILD_DIR SOURCE_DIR PREFIX LIBDIR INCLUDEDIR BINDIR
-# VERSION SOVERSION.  Exit 77 (skipped) if the install dirs are absolute,
+# VERSION SOVERSION, and WITH_FORTRAN (ON: the Fortran module is built) and
+# PYTHON_DIR (where the Python package goes; empty: not built).  Exit 77 (skipped) if the install dirs are absolute,
 # since --prefix would not redirect them.
 set -euo pipefail
 : "${CMAKE:=cmake}"
@@ -33,12 +34,27 @@ check "header $INCLUDEDIR/bodt.h" -f "$PREFIX/$INCLUDEDIR/bodt.h"
 if ! cmp -s "$SOURCE_DIR/include/bodt.h" "$PREFIX/$INCLUDEDIR/bodt.h"; then
   echo "FAIL the installed bodt.h differs from include/bodt.h"; fail=1
 fi
-check "$LIBDIR/libbodt.so.$VERSION is a file" -f "$lib/libbodt.so.$VERSION" -a ! -L "$lib/libbodt.so.$VERSION"
-check "$LIBDIR/libbodt.so.$SOVERSION -> libbodt.so.$VERSION" \
-  -L "$lib/libbodt.so.$SOVERSION" -a "$(readlink "$lib/libbodt.so.$SOVERSION" 2>/dev/null)" = "libbodt.so.$VERSION"
-check "$LIBDIR/libbodt.so -> libbodt.so.$SOVERSION" \
-  -L "$lib/libbodt.so" -a "$(readlink "$lib/libbodt.so" 2>/dev/null)" = "libbodt.so.$SOVERSION"
 check "$LIBDIR/pkgconfig/bodt.pc" -f "$lib/pkgconfig/bodt.pc"
+# check_library NAME: the file, the SONAME link and the development link
+check_library() {
+  local name=$1
+  check "$LIBDIR/$name.so.$VERSION is a file" -f "$lib/$name.so.$VERSION" -a ! -L "$lib/$name.so.$VERSION"
+  check "$LIBDIR/$name.so.$SOVERSION -> $name.so.$VERSION" \
+    -L "$lib/$name.so.$SOVERSION" -a "$(readlink "$lib/$name.so.$SOVERSION" 2>/dev/null)" = "$name.so.$VERSION"
+  check "$LIBDIR/$name.so -> $name.so.$SOVERSION" \
+    -L "$lib/$name.so" -a "$(readlink "$lib/$name.so" 2>/dev/null)" = "$name.so.$SOVERSION"
+}
+check_library libbodt
+if [[ ${WITH_FORTRAN:-OFF} == ON ]]; then
+  check "module $INCLUDEDIR/bodt.mod" -f "$PREFIX/$INCLUDEDIR/bodt.mod"
+  check_library libbodt_fortran
+  check "$LIBDIR/pkgconfig/bodt-fortran.pc" -f "$lib/pkgconfig/bodt-fortran.pc"
+fi
+if [[ -n ${PYTHON_DIR:-} ]]; then
+  for f in __init__.py mesh.py _library.py _paths.py _version.py; do
+    check "Python package $PYTHON_DIR/bodt/$f" -f "$PREFIX/$PYTHON_DIR/bodt/$f"
+  done
+fi
 for f in bodtConfig.cmake bodtConfigVersion.cmake bodtTargets.cmake; do
   check "$LIBDIR/cmake/bodt/$f" -f "$lib/cmake/bodt/$f"
 done

@@ -1,0 +1,158 @@
+"""The installed bodt.h, as it is, through cffi's ABI mode: parsed after the C preprocessor, then used.
+
+BODT_TEST_HEADER is the installed bodt.h, BODT_TEST_LIBRARY the installed
+libbodt.so.<major> and BODT_TEST_CC the C compiler (set by CTest).  The
+preprocessor gets only empty <stddef.h> and <stdint.h> (cffi knows size_t
+and the intN_t types) and keeps the #defines, of which the integer BODT_
+ones go to cffi as constants.
+"""
+
+import ctypes
+import math
+import os
+import re
+import subprocess
+import tempfile
+import unittest
+
+import cffi
+
+import bodt
+from bodt import structs
+
+HEADER = os.environ["BODT_TEST_HEADER"]
+LIBRARY = os.environ["BODT_TEST_LIBRARY"]
+CC = os.environ["BODT_TEST_CC"]
+
+
+def preprocessed_header() -> str:
+    """bodt.h after ``cc -E -P -dD``, with the integer BODT_ #defines and without the others."""
+    with tempfile.TemporaryDirectory() as include_dir:
+        for name in ("stddef.h", "stdint.h"):
+            open(os.path.join(include_dir, name), "w").close()
+        environment = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}  # no ASan runtime in cc
+        output = subprocess.run(
+            [CC, "-E", "-P", "-dD", "-nostdinc", "-I", include_dir, HEADER],
+            env=environment, check=True, capture_output=True, text=True,
+        ).stdout
+    lines = []
+    for line in output.splitlines():
+        if line.startswith("#"):
+            constant = re.fullmatch(r"#define (BODT_\w+) \(?(-?\d+)\)?\s*", line)
+            if constant:
+                lines.append(f"#define {constant[1]} {constant[2]}")
+        else:
+            lines.append(line)
+    return "\n".join(lines)
+
+
+class TestCffiHeader(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.ffi = cffi.FFI()
+        cls.ffi.cdef(preprocessed_header())
+        cls.lib = cls.ffi.dlopen(LIBRARY)
+
+    def message(self, mesh) -> str:
+        return self.ffi.string(self.lib.bodt_mesh_last_error(mesh)).decode()
+
+    def create(self, points: list[float], tets: list[int]):
+        ffi, lib = self.ffi, self.lib
+        handle = ffi.new("bodt_mesh **")
+        status = lib.bodt_mesh_create(len(points) // 3, ffi.new("double[]", points), len(tets) // 4,
+                                      ffi.new("int32_t[]", tets), 0, handle)
+        return status, handle[0]
+
+    def quality(self, mesh):
+        q = self.ffi.new("bodt_quality *", {"size": self.ffi.sizeof("bodt_quality")})
+        self.assertEqual(self.lib.bodt_mesh_quality(mesh, q), self.lib.BODT_OK, self.message(mesh))
+        return q
+
+    def test_version(self):
+        lib = self.lib
+        self.assertEqual(lib.BODT_VERSION_NUMBER, lib.bodt_version_number())
+        self.assertEqual(lib.BODT_VERSION_NUMBER,
+                         lib.BODT_VERSION_MAJOR * 10000 + lib.BODT_VERSION_MINOR * 100 + lib.BODT_VERSION_PATCH)
+        self.assertEqual(self.ffi.string(lib.bodt_version_string()).decode(),
+                         f"{lib.BODT_VERSION_MAJOR}.{lib.BODT_VERSION_MINOR}.{lib.BODT_VERSION_PATCH}")
+
+    def test_status_strings(self):
+        lib = self.lib
+        self.assertEqual(self.ffi.string(lib.bodt_status_string(lib.BODT_OK)), b"ok")
+        self.assertEqual(self.ffi.string(lib.bodt_status_string(lib.BODT_ERR_BAD_MESH)), b"bad mesh")
+        self.assertEqual(self.ffi.string(lib.bodt_status_string(lib.BODT_ERR_CANCELLED)), b"cancelled")
+
+    def test_create_step_quality_run(self):
+        ffi, lib = self.ffi, self.lib
+        points = [1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0.45, 0.3, 0.2]
+        tets = [6, 0, 2, 4, 6, 2, 1, 4, 6, 3, 0, 4, 6, 1, 3, 4, 6, 2, 0, 5, 6, 1, 2, 5, 6, 0, 3, 5, 6, 3, 1, 5]
+        status, mesh = self.create(points, tets)
+        self.assertEqual(status, lib.BODT_OK, self.message(ffi.NULL))
+        self.addCleanup(lib.bodt_mesh_destroy, mesh)
+        before = self.quality(mesh)
+        self.assertEqual((before.num_vertices, before.num_tets, before.num_boundary_faces), (7, 8, 8))
+        self.assertAlmostEqual(before.volume, 4.0 / 3.0, delta=1e-12)
+        self.assertEqual(sum(before.dihedral_histogram), 6 * 8)
+        self.assertEqual(len(before.dihedral_histogram), lib.BODT_DIHEDRAL_BINS)
+
+        report = ffi.new("bodt_step_report *", {"size": ffi.sizeof("bodt_step_report")})
+        self.assertEqual(lib.bodt_step(mesh, report), lib.BODT_OK, self.message(mesh))
+        self.assertEqual(report.step, 1)
+        self.assertEqual(report.vertices_moved, 1)
+        after = self.quality(mesh)
+        self.assertGreater(after.min_dihedral, before.min_dihedral)
+        self.assertEqual(report.min_dihedral, after.min_dihedral)
+
+        steps = []
+
+        @ffi.callback("bodt_step_callback")
+        def stop(step_report, user_data):
+            steps.append(step_report.step)
+            return 1
+
+        self.assertEqual(lib.bodt_run(mesh, 20, stop, ffi.NULL), lib.BODT_ERR_CANCELLED)
+        self.assertEqual(steps, [2])
+        self.assertEqual(self.message(mesh), "cancelled by the callback after step 2")
+
+    def test_error_message(self):
+        lib = self.lib
+        points = [1, 1, 1, 1, -1, -1, -1, -1, 1, -1, 1, -1]
+        status, mesh = self.create(points, [0, 1, 2, 4])
+        self.assertEqual(status, lib.BODT_ERR_BAD_MESH)
+        self.assertEqual(mesh, self.ffi.NULL)
+        self.assertEqual(
+            self.message(self.ffi.NULL), "tet 0 uses vertex 4, but the mesh has 4 vertices (numbered from 0)"
+        )
+        status, mesh = self.create(points, [0, 1, 2, 3])
+        self.assertEqual(status, lib.BODT_OK)
+        self.addCleanup(lib.bodt_mesh_destroy, mesh)
+        self.assertAlmostEqual(self.quality(mesh).min_dihedral, math.degrees(math.acos(1.0 / 3.0)), delta=1e-10)
+        self.assertEqual(lib.bodt_set_param_double(mesh, lib.BODT_PARAM_OPS, 1.0), lib.BODT_ERR_INVALID_ARGUMENT)
+        self.assertIn("BODT_PARAM_OPS is an int parameter", self.message(mesh))
+
+    def test_the_package_agrees_with_cffi(self):
+        """The bodt package's enums and struct mirrors, against cffi's reading of the header."""
+        prefixes = {
+            bodt.Status: "BODT_ERR_", bodt.CreateFlag: "BODT_CREATE_", bodt.VertexClass: "BODT_VERTEX_",
+            bodt.Measure: "BODT_MEASURE_", bodt.Mode: "BODT_MODE_", bodt.Param: "BODT_PARAM_", bodt.Op: "BODT_OP_",
+            bodt.GeometryClass: "BODT_GEOMETRY_", bodt.Shape: "BODT_SHAPE_",
+        }
+        for enum, prefix in prefixes.items():
+            for name, member in enum.__members__.items():
+                c_name = "BODT_OK" if member is bodt.Status.OK else prefix + name
+                self.assertEqual(getattr(self.lib, c_name), member, c_name)
+        self.assertEqual(self.lib.BODT_OPS_MODE_DEFAULT, bodt.OPS_MODE_DEFAULT)
+        mirrors = {
+            "bodt_quality": structs.QualityStruct,
+            "bodt_step_report": structs.StepReportStruct,
+            "bodt_shape_fit": structs.ShapeFitStruct,
+            "bodt_recovery_error": structs.RecoveryErrorStruct,
+        }
+        for c_name, mirror in mirrors.items():
+            self.assertEqual(ctypes.sizeof(mirror), self.ffi.sizeof(c_name), c_name)
+            for field, _ in mirror._fields_:
+                self.assertEqual(getattr(mirror, field).offset, self.ffi.offsetof(c_name, field), f"{c_name}.{field}")
+
+
+if __name__ == "__main__":
+    unittest.main()
