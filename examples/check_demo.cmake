@@ -3,7 +3,8 @@
 # Runs `bodt improve INPUT OUTPUT` as scripts/demo.sh does, then checks with
 # `bodt quality --json` that the output has no inverted tet, a larger
 # smallest dihedral angle than the input, and no fewer vertices (flips and
-# insertion change the connectivity; input vertices are kept).
+# insertion change the connectivity; input vertices are kept); then runs
+# `bodt compare` and `bodt report` as the demo does.
 cmake_minimum_required(VERSION 3.20)
 get_filename_component(outdir "${OUTPUT}" DIRECTORY)
 file(REMOVE_RECURSE "${outdir}")
@@ -41,4 +42,23 @@ endif()
 # if(GREATER) compares the values as floating-point numbers.
 if(NOT out_min_dihedral GREATER in_min_dihedral)
   message(FATAL_ERROR "the smallest dihedral angle did not grow: ${in_min_dihedral} -> ${out_min_dihedral}")
+endif()
+
+# The rest of the demo: compare (volume kept, markers kept) and the report.
+execute_process(COMMAND "${BODT}" compare "${INPUT}" "${OUTPUT}" --json
+                RESULT_VARIABLE rc OUTPUT_VARIABLE json ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "bodt compare exited with ${rc}: ${err}")
+endif()
+message("compare: ${json}")
+set(report "${outdir}/report.html")
+execute_process(COMMAND "${BODT}" report "${INPUT}" "${OUTPUT}" -o "${report}"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT EXISTS "${report}")
+  message(FATAL_ERROR "bodt report exited with ${rc}: ${err}")
+endif()
+file(READ "${report}" html)
+string(FIND "${html}" "<svg" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "${report} has no histogram")
 endif()

@@ -609,28 +609,59 @@ BODT_API int bodt_mesh_recovery_error(const bodt_mesh *mesh,
 
 /* ----------------------------------------------------------------- files */
 
+/* File formats (bodt_mesh_read_format, bodt_mesh_write_format). */
+enum bodt_format {
+    BODT_FORMAT_AUTO = 0,           /* by the extension, as below              */
+    /* .mesh, Medit ASCII: Vertices, Tetrahedra (ref = region id), Triangles
+     * (ref = face marker), Corners and RequiredVertices (fixed vertices),
+     * Edges + Ridges (feature edges); other known sections are skipped. */
+    BODT_FORMAT_MEDIT = 1,
+    BODT_FORMAT_MEDIT_BINARY = 2,   /* .meshb, the same sections in binary    */
+    /* .node / .ele (give either; the other and an optional .face with
+     * markers are found beside it; a write makes all three).  0- and
+     * 1-based files.  No fixed vertices. */
+    BODT_FORMAT_TETGEN = 3,
+    /* .msh, Gmsh: reads 2.2 and 4.1, ASCII and binary; physical tags of
+     * volumes are region ids, of surfaces face markers.  Writes 4.1 ASCII;
+     * the next three write the other variants. */
+    BODT_FORMAT_GMSH = 4,
+    BODT_FORMAT_GMSH_BINARY = 5,    /* writes 4.1 binary                      */
+    BODT_FORMAT_GMSH22 = 6,         /* writes 2.2 ASCII                       */
+    BODT_FORMAT_GMSH22_BINARY = 7,  /* writes 2.2 binary                      */
+    /* .vtu, VTK XML unstructured grid (ParaView): a write adds per-tet
+     * region, minimum and maximum dihedral angle, stretch and volume as
+     * cell data. */
+    BODT_FORMAT_VTU = 8,
+    /* .inp, Abaqus / CalculiX (write only): C3D4 elements, an element set
+     * per region, a node set of the fixed vertices, an element surface per
+     * face marker. */
+    BODT_FORMAT_ABAQUS = 9
+};
+
 /*
- * Read a mesh from a file; the format is chosen by the extension:
- *   .mesh          Medit ASCII: Vertices, Tetrahedra (ref = region id),
- *                  Triangles (ref = marker), RequiredVertices and Corners
- *                  (become fixed vertices); other known sections are skipped.
- *   .node / .ele   TetGen (give either; the other and an optional .face with
- *                  markers are found beside it).  0- and 1-based files.  The
- *                  format has no fixed vertices.
- * The handle's index base is 0 (1 with bodt_mesh_read_ex and
- * BODT_CREATE_ONE_BASED).  On failure, bodt_mesh_last_error(NULL)
- * says why: BODT_ERR_IO for a file that cannot be read or parsed (with the
- * line number), BODT_ERR_BAD_MESH for a parsed mesh that is not valid (with
- * the entities in the file's own numbering).
+ * Read a mesh from a file, in the format its extension says (enum
+ * bodt_format).  The handle's index base is 0 (1 with bodt_mesh_read_ex and
+ * BODT_CREATE_ONE_BASED).  On failure, bodt_mesh_last_error(NULL) says why:
+ * BODT_ERR_IO for a file that cannot be read or parsed (with the line
+ * number or byte offset), BODT_ERR_BAD_MESH for a parsed mesh that is not
+ * valid (with the entities in the file's own numbering),
+ * BODT_ERR_UNSUPPORTED for an unknown extension or a format that cannot be
+ * read.
  */
 BODT_API int bodt_mesh_read(const char *path, bodt_mesh **mesh);
 /* bodt_mesh_read() with bodt_create_flag bits. */
 BODT_API int bodt_mesh_read_ex(const char *path, uint32_t flags,
                                bodt_mesh **mesh);
+/* bodt_mesh_read_ex() in the given enum bodt_format, whatever the
+ * extension (BODT_FORMAT_AUTO: by the extension). */
+BODT_API int bodt_mesh_read_format(const char *path, int format,
+                                   uint32_t flags, bodt_mesh **mesh);
 
-/* Write to a file, format by extension as for bodt_mesh_read (a TetGen path
- * writes .node, .ele and .face). */
+/* Write to a file, format by extension as for bodt_mesh_read. */
 BODT_API int bodt_mesh_write(const bodt_mesh *mesh, const char *path);
+/* bodt_mesh_write() in the given enum bodt_format. */
+BODT_API int bodt_mesh_write_format(const bodt_mesh *mesh, const char *path,
+                                    int format);
 
 #ifdef __cplusplus
 }

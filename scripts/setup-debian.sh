@@ -18,6 +18,7 @@ packages=(
   python3-numpy     # the Python package (bindings/python) and its tests
   python3-cffi      # the test that loads the installed bodt.h with cffi
   abigail-tools     # abidiff: the ABI check against tests/consumers/libbodt.abi
+  chromium          # renders the HTML report headless in its test (screenshot)
 )
 
 if ! command -v dpkg-query >/dev/null 2>&1; then

@@ -1,6 +1,8 @@
 /*
  * test_io: mesh files through libbodt.so.  Round trips of Medit .mesh and
- * TetGen .node/.ele/.face with regions, face markers and fixed vertices;
+ * TetGen .node/.ele/.face with regions, face markers and fixed vertices, and
+ * of every other readable format (.meshb, .msh 2.2 / 4.1 ASCII / binary,
+ * .vtu); VTU quality fields, Abaqus .inp written, not read;
  * hand-written TetGen files numbered from 0 and from 1; a TetGen file in
  * Stellar's negative orientation; malformed files, each refused with
  * BODT_ERR_IO and a message naming the file and line; unknown extensions;
@@ -40,6 +42,21 @@ static void write_text(const char *path, const char *text) {
     if (!f) fail_msg("cannot write %s: %s", path, strerror(errno));
     fputs(text, f);
     fclose(f);
+}
+
+/* The whole file as a string (the caller frees it). */
+static char *read_text(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (!f) fail_msg("cannot read %s: %s", path, strerror(errno));
+    fseek(f, 0, SEEK_END);
+    const long size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *text = malloc((size_t)size + 1);
+    assert_non_null(text);
+    assert_int_equal(fread(text, 1, (size_t)size, f), (size_t)size);
+    text[size] = '\0';
+    fclose(f);
+    return text;
 }
 
 static int file_exists(const char *path) {
@@ -154,6 +171,95 @@ static void test_medit_roundtrip(void **state) {
     bodt_mesh *back2 = read_ok(again, 0);
     assert_same_mesh(h, back2, 1);
     bodt_mesh_destroy(back2);
+    bodt_mesh_destroy(back);
+    bodt_mesh_destroy(h);
+    tm_free(&m);
+}
+
+/* Every readable format, chosen explicitly (whatever the extension) and by
+ * extension: the decorated box comes back the same, fixed vertices
+ * included where the format carries them (not TetGen). */
+static void test_format_roundtrips(void **state) {
+    (void)state;
+    static const struct {
+        int format;
+        const char *name;
+        int fixed;
+    } formats[] = {
+        {BODT_FORMAT_MEDIT, "f.mesh", 1},          {BODT_FORMAT_MEDIT_BINARY, "f.meshb", 1},
+        {BODT_FORMAT_TETGEN, "f.node", 0},         {BODT_FORMAT_GMSH, "f.msh", 1},
+        {BODT_FORMAT_GMSH_BINARY, "fb.msh", 1},    {BODT_FORMAT_GMSH22, "f22.msh", 1},
+        {BODT_FORMAT_GMSH22_BINARY, "fb22.msh", 1}, {BODT_FORMAT_VTU, "f.vtu", 1},
+    };
+    test_mesh m;
+    bodt_mesh *h = decorated_box(&m);
+    for (size_t k = 0; k < sizeof formats / sizeof formats[0]; ++k) {
+        const char *path = path_of(formats[k].name);
+        if (bodt_mesh_write_format(h, path, formats[k].format) != BODT_OK)
+            fail_msg("writing %s: %s", path, bodt_mesh_last_error(h));
+        bodt_mesh *back = NULL;
+        if (bodt_mesh_read_format(path, formats[k].format, 0, &back) != BODT_OK)
+            fail_msg("reading %s: %s", path, bodt_mesh_last_error(NULL));
+        assert_same_mesh(h, back, formats[k].fixed);
+        bodt_mesh_destroy(back);
+        if (formats[k].format == BODT_FORMAT_GMSH_BINARY || formats[k].format == BODT_FORMAT_GMSH22_BINARY)
+            continue; /* .msh by extension reads any variant: the same as above */
+        back = read_ok(path, 0);
+        assert_same_mesh(h, back, formats[k].fixed);
+        bodt_mesh_destroy(back);
+    }
+    bodt_mesh_destroy(h);
+    tm_free(&m);
+}
+
+/* VTU files carry the per-tet quality for viewers; Abaqus files are written
+ * (C3D4, an element set per region, a surface per marker), not read. */
+static void test_vtu_fields_and_abaqus(void **state) {
+    (void)state;
+    test_mesh m;
+    bodt_mesh *h = decorated_box(&m);
+    const char *vtu = path_of("fields.vtu");
+    assert_int_equal(bodt_mesh_write(h, vtu), BODT_OK);
+    char *text = read_text(vtu);
+    const char *names[] = {"\"region\"", "\"min_dihedral\"", "\"max_dihedral\"", "\"stretch\"", "\"volume\""};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; ++k) assert_contains(text, names[k]);
+    free(text);
+
+    const char *inp = path_of("box.inp");
+    assert_int_equal(bodt_mesh_write(h, inp), BODT_OK);
+    text = read_text(inp);
+    assert_contains(text, "TYPE=C3D4");
+    assert_contains(text, "ELSET=REGION_4");
+    assert_contains(text, "NAME=MARKER_12");
+    free(text);
+    bodt_mesh *back = (bodt_mesh *)&back;
+    assert_int_equal(bodt_mesh_read(inp, &back), BODT_ERR_UNSUPPORTED);
+    assert_null(back);
+    assert_contains(bodt_mesh_last_error(NULL), "written, not read");
+    bodt_mesh_destroy(h);
+    tm_free(&m);
+}
+
+/* Upper-case extensions count; unknown format codes are refused. */
+static void test_format_choice(void **state) {
+    (void)state;
+    test_mesh m;
+    bodt_mesh *h = decorated_box(&m);
+    const char *upper = path_of("UPPER.MESH");
+    assert_int_equal(bodt_mesh_write(h, upper), BODT_OK);
+    bodt_mesh *back = read_ok(upper, 0);
+    assert_same_mesh(h, back, 1);
+    bodt_mesh_destroy(back);
+    assert_int_equal(bodt_mesh_write_format(h, path_of("x.mesh"), 99), BODT_ERR_INVALID_ARGUMENT);
+    assert_contains(bodt_mesh_last_error(h), "unknown format 99");
+    back = (bodt_mesh *)&back;
+    assert_int_equal(bodt_mesh_read_format(upper, -1, 0, &back), BODT_ERR_INVALID_ARGUMENT);
+    assert_null(back);
+    /* the explicit format wins over the extension */
+    const char *odd = path_of("medit_named.msh");
+    assert_int_equal(bodt_mesh_write_format(h, odd, BODT_FORMAT_MEDIT), BODT_OK);
+    back = NULL;
+    assert_int_equal(bodt_mesh_read_format(odd, BODT_FORMAT_MEDIT, 0, &back), BODT_OK);
     bodt_mesh_destroy(back);
     bodt_mesh_destroy(h);
     tm_free(&m);
@@ -769,6 +875,9 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_medit_roundtrip),
         cmocka_unit_test(test_tetgen_roundtrip),
+        cmocka_unit_test(test_format_roundtrips),
+        cmocka_unit_test(test_vtu_fields_and_abaqus),
+        cmocka_unit_test(test_format_choice),
         cmocka_unit_test_teardown(test_tetgen_roundtrip_fixed_vertices, cleanup_teardown),
         cmocka_unit_test(test_tetgen_handwritten_bases),
         cmocka_unit_test(test_tetgen_negative_orientation),

@@ -89,6 +89,11 @@ module bodt
   integer(c_int32_t), parameter, public :: &
     BODT_SHAPE_NONE = 0, BODT_SHAPE_PLANE = 1, BODT_SHAPE_CYLINDER = 2, BODT_SHAPE_LINE = 3, &
     BODT_SHAPE_ARC = 4, BODT_SHAPE_CIRCLE = 5
+  ! enum bodt_format
+  integer(c_int), parameter, public :: &
+    BODT_FORMAT_AUTO = 0, BODT_FORMAT_MEDIT = 1, BODT_FORMAT_MEDIT_BINARY = 2, BODT_FORMAT_TETGEN = 3, &
+    BODT_FORMAT_GMSH = 4, BODT_FORMAT_GMSH_BINARY = 5, BODT_FORMAT_GMSH22 = 6, BODT_FORMAT_GMSH22_BINARY = 7, &
+    BODT_FORMAT_VTU = 8, BODT_FORMAT_ABAQUS = 9
 
   ! The structs of bodt.h, field for field.
   type, bind(c), public :: bodt_quality
@@ -140,7 +145,7 @@ module bodt
   public :: bodt_step_callback, bodt_version_number
   public :: bodt_version_string, bodt_status_string, bodt_mesh_last_error
   public :: bodt_mesh_create, bodt_mesh_create_ex, bodt_mesh_destroy
-  public :: bodt_mesh_read, bodt_mesh_read_ex, bodt_mesh_write
+  public :: bodt_mesh_read, bodt_mesh_read_ex, bodt_mesh_read_format, bodt_mesh_write, bodt_mesh_write_format
   public :: bodt_mesh_set_regions, bodt_mesh_set_boundary_faces, bodt_mesh_set_fixed_vertices, &
             bodt_mesh_set_feature_edges
   public :: bodt_mesh_get_counts, bodt_mesh_get_vertices, bodt_mesh_get_tets, bodt_mesh_get_regions, &
@@ -198,19 +203,22 @@ module bodt
       import :: c_ptr
       type(c_ptr), value :: mesh
     end subroutine c_bodt_mesh_destroy
-    function c_bodt_mesh_read_ex(path, flags, mesh) bind(c, name='bodt_mesh_read_ex') result(status)
+    function c_bodt_mesh_read_format(path, format, flags, mesh) bind(c, name='bodt_mesh_read_format') &
+        result(status)
       import :: c_int, c_int32_t, c_char, c_ptr
       character(kind=c_char), intent(in) :: path(*)
+      integer(c_int), value :: format
       integer(c_int32_t), value :: flags
       type(c_ptr), intent(out) :: mesh
       integer(c_int) :: status
-    end function c_bodt_mesh_read_ex
-    function c_bodt_mesh_write(mesh, path) bind(c, name='bodt_mesh_write') result(status)
+    end function c_bodt_mesh_read_format
+    function c_bodt_mesh_write_format(mesh, path, format) bind(c, name='bodt_mesh_write_format') result(status)
       import :: c_int, c_char, c_ptr
       type(c_ptr), value :: mesh
       character(kind=c_char), intent(in) :: path(*)
+      integer(c_int), value :: format
       integer(c_int) :: status
-    end function c_bodt_mesh_write
+    end function c_bodt_mesh_write_format
 
     function c_bodt_mesh_set_regions(mesh, region_ids) bind(c, name='bodt_mesh_set_regions') result(status)
       import :: c_int, c_int32_t, c_ptr
@@ -573,7 +581,7 @@ contains
     type(bodt_mesh_t), intent(out) :: mesh
     integer(c_int), intent(in), optional :: index_base
     integer(c_int), intent(out), optional :: ierr
-    call read_file('bodt_mesh_read', path, BODT_CREATE_DEFAULT, mesh, index_base, ierr)
+    call read_file('bodt_mesh_read', path, BODT_FORMAT_AUTO, BODT_CREATE_DEFAULT, mesh, index_base, ierr)
   end subroutine bodt_mesh_read
 
   subroutine bodt_mesh_read_ex(path, flags, mesh, index_base, ierr)
@@ -582,13 +590,24 @@ contains
     type(bodt_mesh_t), intent(out) :: mesh
     integer(c_int), intent(in), optional :: index_base
     integer(c_int), intent(out), optional :: ierr
-    call read_file('bodt_mesh_read_ex', path, flags, mesh, index_base, ierr)
+    call read_file('bodt_mesh_read_ex', path, BODT_FORMAT_AUTO, flags, mesh, index_base, ierr)
   end subroutine bodt_mesh_read_ex
+
+  subroutine bodt_mesh_read_format(path, format, flags, mesh, index_base, ierr)
+    character(len=*), intent(in) :: path
+    integer(c_int), intent(in) :: format
+    integer(c_int32_t), intent(in) :: flags
+    type(bodt_mesh_t), intent(out) :: mesh
+    integer(c_int), intent(in), optional :: index_base
+    integer(c_int), intent(out), optional :: ierr
+    call read_file('bodt_mesh_read_format', path, format, flags, mesh, index_base, ierr)
+  end subroutine bodt_mesh_read_format
 
   ! Base 1 is BODT_CREATE_ONE_BASED; any base but 0 and 1 is refused here, as
   ! bodt_mesh_create refuses it.
-  subroutine read_file(name, path, flags, mesh, index_base, ierr)
+  subroutine read_file(name, path, format, flags, mesh, index_base, ierr)
     character(len=*), intent(in) :: name, path
+    integer(c_int), intent(in) :: format
     integer(c_int32_t), intent(in) :: flags
     type(bodt_mesh_t), intent(inout) :: mesh
     integer(c_int), intent(in), optional :: index_base
@@ -598,9 +617,10 @@ contains
     base = 1
     if (present(index_base)) base = index_base
     if (base == 0) then
-      call finish(c_bodt_mesh_read_ex(c_path(path), flags, mesh%ptr), name, mesh, ierr)
+      call finish(c_bodt_mesh_read_format(c_path(path), format, flags, mesh%ptr), name, mesh, ierr)
     else if (base == 1) then
-      call finish(c_bodt_mesh_read_ex(c_path(path), ior(flags, BODT_CREATE_ONE_BASED), mesh%ptr), name, mesh, ierr)
+      call finish(c_bodt_mesh_read_format(c_path(path), format, ior(flags, BODT_CREATE_ONE_BASED), mesh%ptr), &
+                  name, mesh, ierr)
     else
       write (text, '(i0)') base
       call finish(BODT_ERR_INVALID_ARGUMENT, name, mesh, ierr, 'index_base is ' // trim(text) // ', not 0 or 1')
@@ -611,8 +631,16 @@ contains
     type(bodt_mesh_t), intent(inout) :: mesh
     character(len=*), intent(in) :: path
     integer(c_int), intent(out), optional :: ierr
-    call finish(c_bodt_mesh_write(mesh%ptr, c_path(path)), 'bodt_mesh_write', mesh, ierr)
+    call finish(c_bodt_mesh_write_format(mesh%ptr, c_path(path), BODT_FORMAT_AUTO), 'bodt_mesh_write', mesh, ierr)
   end subroutine bodt_mesh_write
+
+  subroutine bodt_mesh_write_format(mesh, path, format, ierr)
+    type(bodt_mesh_t), intent(inout) :: mesh
+    character(len=*), intent(in) :: path
+    integer(c_int), intent(in) :: format
+    integer(c_int), intent(out), optional :: ierr
+    call finish(c_bodt_mesh_write_format(mesh%ptr, c_path(path), format), 'bodt_mesh_write_format', mesh, ierr)
+  end subroutine bodt_mesh_write_format
 
   ! ---------------------------------------------------- optional mesh data
 

@@ -173,6 +173,20 @@ bodt::MeshData to_mesh_data(const bodt_mesh* h) {
     return d;
 }
 
+// Per-tet quality as cell data, for viewers (ParaView colours and thresholds
+// by it).
+void add_quality_fields(const bodt::TetMesh& mesh, bodt::MeshData& data) {
+    const std::pair<const char*, bodt::TetMeasure> fields[] = {
+        {"min_dihedral", bodt::TetMeasure::MinDihedral},
+        {"max_dihedral", bodt::TetMeasure::MaxDihedral},
+        {"stretch", bodt::TetMeasure::Stretch},
+        {"volume", bodt::TetMeasure::Volume}};
+    for (const auto& [name, measure] : fields) {
+        data.tet_fields.push_back({name, {}});
+        bodt::tet_measures(mesh, measure, data.tet_fields.back().values);
+    }
+}
+
 // A handle for a mesh read from a file.  Problems with the mesh itself are
 // BODT_ERR_BAD_MESH, named in the file's own numbering; the handle then
 // counts from 0, or from 1 with BODT_CREATE_ONE_BASED.
@@ -521,6 +535,10 @@ int bodt_run(bodt_mesh* mesh, int32_t max_steps, bodt_step_callback callback, vo
 int bodt_mesh_read(const char* path, bodt_mesh** mesh) { return bodt_mesh_read_ex(path, BODT_CREATE_DEFAULT, mesh); }
 
 int bodt_mesh_read_ex(const char* path, uint32_t flags, bodt_mesh** mesh) {
+    return bodt_mesh_read_format(path, BODT_FORMAT_AUTO, flags, mesh);
+}
+
+int bodt_mesh_read_format(const char* path, int format, uint32_t flags, bodt_mesh** mesh) {
     if (!mesh) {
         t_thread_error = "mesh (the output pointer) is NULL";
         return BODT_ERR_INVALID_ARGUMENT;
@@ -529,7 +547,7 @@ int bodt_mesh_read_ex(const char* path, uint32_t flags, bodt_mesh** mesh) {
     bodt_mesh* created = nullptr;
     const int status = guarded(nullptr, [&] {
         require(path != nullptr, "path is NULL");
-        const bodt::MeshData data = bodt::read_mesh_file(path);
+        const bodt::MeshData data = bodt::read_mesh_file(path, bodt::format_from_code(format, path));
         try {
             created = from_mesh_data(data, flags);
         } catch (const Error& e) {
@@ -541,9 +559,16 @@ int bodt_mesh_read_ex(const char* path, uint32_t flags, bodt_mesh** mesh) {
 }
 
 int bodt_mesh_write(const bodt_mesh* mesh, const char* path) {
+    return bodt_mesh_write_format(mesh, path, BODT_FORMAT_AUTO);
+}
+
+int bodt_mesh_write_format(const bodt_mesh* mesh, const char* path, int format) {
     return with_mesh(mesh, [&] {
         require(path != nullptr, "path is NULL");
-        bodt::write_mesh_file(path, to_mesh_data(mesh));
+        const bodt::MeshFormat f = bodt::format_from_code(format, path);
+        bodt::MeshData data = to_mesh_data(mesh);
+        if (f == bodt::MeshFormat::Vtu) add_quality_fields(mesh->mesh, data);
+        bodt::write_mesh_file(path, data, f);
     });
 }
 

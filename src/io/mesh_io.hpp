@@ -21,16 +21,38 @@ struct MeshData {
     std::vector<int32_t> tri_markers;  // one per marked face
     std::vector<int32_t> fixed;        // fixed vertices
     std::vector<int32_t> feature_edges;  // 2 per feature edge
+    // Per-tet values that formats with cell data (VTU) write for viewers:
+    // a name and one value per tet.  Never read back.
+    struct TetField {
+        std::string name;
+        std::vector<double> values;
+    };
+    std::vector<TetField> tet_fields;
 };
 
-enum class MeshFormat { Medit, TetGen };
+// The values are those of enum bodt_format (bodt.h).
+enum class MeshFormat {
+    Medit = 1,         // .mesh
+    MeditBinary = 2,   // .meshb
+    TetGen = 3,        // .node / .ele / .face
+    Gmsh = 4,          // .msh: reads 2.2 and 4.1, ASCII and binary; writes 4.1 ASCII
+    GmshBinary = 5,    // writes 4.1 binary
+    Gmsh22 = 6,        // writes 2.2 ASCII
+    Gmsh22Binary = 7,  // writes 2.2 binary
+    Vtu = 8,           // .vtu (VTK XML unstructured grid)
+    Abaqus = 9         // .inp (write only)
+};
 
-// By extension: .mesh -> Medit; .node/.ele -> TetGen.  Throws
+// By extension: .mesh, .meshb, .node/.ele, .msh, .vtu, .inp.  Throws
 // Error(BODT_ERR_UNSUPPORTED) for anything else.
 MeshFormat format_from_path(const std::string& path);
+// An enum bodt_format value; BODT_FORMAT_AUTO goes by the path.  Throws
+// Error(BODT_ERR_INVALID_ARGUMENT) for a value that is none.
+MeshFormat format_from_code(int code, const std::string& path);
 
-MeshData read_mesh_file(const std::string& path);
-void write_mesh_file(const std::string& path, const MeshData& data);
+// Throws Error(BODT_ERR_UNSUPPORTED) for a format that is only written.
+MeshData read_mesh_file(const std::string& path, MeshFormat format);
+void write_mesh_file(const std::string& path, const MeshData& data, MeshFormat format);
 
 MeshData read_medit(const std::string& path);
 void write_medit(const std::string& path, const MeshData& data);

@@ -5,7 +5,9 @@
 
 CASE is one of quality_json, improve, improve_ops, exit_codes,
 improve_opt_weighted, improve_phased, improve_surface (with TetGen), surface_without_tetgen
-(without).  Every value checked comes from
+(without), compare, convert, convert_formats (needs the .meshb, .msh, .vtu
+and .inp writers), param, progress (uses a pseudo-terminal), histogram,
+help, report.  Every value checked comes from
 running the command; expected mesh quality is recomputed here from the mesh
 file with plain Python (no library code).  Exits 0 on success, 1 on the
 first failed check.
@@ -410,7 +412,7 @@ def case_improve_ops(args):
     check("bogus" in err, "the unknown operation is not named: %r" % err)
     check(not os.path.exists(dst), "a refused --ops wrote %s" % dst)
     # --help documents the options
-    code, out, err = run(args.bodt, "--help")
+    code, out, err = run(args.bodt, "help", "improve")
     check(code == 0 and "--ops LIST" in out and "--keep-surface" in out, "--help does not document --ops: %r" % out)
 
 
@@ -478,6 +480,8 @@ def case_improve_opt_weighted(args):
     check(not os.path.exists(bad), "a refused --mode wrote %s" % bad)
     code, out, err = run(args.bodt, "--help")
     check(code == 0 and "opt-weighted" in out, "--help does not document opt-weighted")
+    code, out, err = run(args.bodt, "help", "improve")
+    check(code == 0 and "opt-weighted: paper 001" in out, "help improve does not document opt-weighted")
 
 
 def case_improve_phased(args):
@@ -544,6 +548,19 @@ def case_exit_codes(args):
         ["improve", good, out, "--iterations", "12abc"],
         ["improve", good, out, "--iterations"],
         ["improve", good, out, "--frobnicate"],
+        ["improve", good, out, "--keep-surface=1"],
+        ["improve", good, out, "--format", "nonsense"],
+        ["quality", good, "--json", "--histogram", "--frobnicate"],
+        ["compare"],
+        ["compare", good],
+        ["compare", good, good, good],
+        ["compare", good, good, "--bogus"],
+        ["convert", good],
+        ["convert", good, out, "--format"],
+        ["report", good, good],
+        ["report", good, good, "-o"],
+        ["help", "frobnicate"],
+        ["help", "improve", "quality"],
     ]
     for argv in usage:
         code, o, e = run(args.bodt, *argv)
@@ -556,11 +573,16 @@ def case_exit_codes(args):
         ["quality", os.path.join(args.out, "mesh.xyz")],
         ["improve", missing, out],
         ["improve", bad, out],
+        ["compare", good, missing],
+        ["compare", bad, good],
+        ["convert", missing, out],
+        ["report", good, bad, "-o", os.path.join(args.out, "exit_report.html")],
     ]
     for argv in unreadable:
         code, o, e = run(args.bodt, *argv)
         check(code == 2, "bodt %s: exit %d, expected 2 (input)" % (" ".join(argv), code))
-        check(argv[1] in e, "bodt %s: stderr does not name the file: %r" % (" ".join(argv), e))
+        culprit = [a for a in argv if a in (missing, bad) or a.endswith(".xyz")][0]
+        check(culprit in e, "bodt %s: stderr does not name the file: %r" % (" ".join(argv), e))
     code, o, e = run(args.bodt, "quality", bad)
     check(bad + ":7:" in e, "the malformed file's line is not named: %r" % e)
     check(not os.path.exists(out), "a failed improve wrote %s" % out)
@@ -569,7 +591,7 @@ def case_exit_codes(args):
     check(code == 4, "unwritable output: exit %d, expected 4" % code)
     # help and version
     code, o, e = run(args.bodt, "--help")
-    check(code == 0 and "usage" in o, "--help: %d %r" % (code, o))
+    check(code == 0 and "SYNOPSIS" in o and "EXIT STATUS" in o, "--help: %d %r" % (code, o))
     header = open(os.path.join(args.data, "..", "..", "include", "bodt.h")).read()
     version = ".".join(re.search(r"#define BODT_VERSION_%s (\d+)" % k, header).group(1)
                        for k in ("MAJOR", "MINOR", "PATCH"))
@@ -617,13 +639,444 @@ def case_surface_without_tetgen(args):
     check("TetGen" in err, "the message does not say TetGen is missing: %r" % err)
 
 
+# --------------------------------------------------- compare, convert, report
+
+def read_medit_full(path):
+    """Vertices, 0-based tets, tet refs and [(0-based triangle, ref)] of a Medit file."""
+    tokens = []
+    with open(path) as f:
+        for line in f:
+            tokens += line.split("#", 1)[0].split()
+    pts, tets, refs, tris, k = [], [], [], [], 0
+    while k < len(tokens):
+        t = tokens[k]
+        k += 1
+        if t == "Vertices":
+            n = int(tokens[k]); k += 1
+            for _ in range(n):
+                pts.append(tuple(float(x) for x in tokens[k:k + 3])); k += 4
+        elif t == "Tetrahedra":
+            n = int(tokens[k]); k += 1
+            for _ in range(n):
+                tets.append(tuple(int(x) - 1 for x in tokens[k:k + 4])); refs.append(int(tokens[k + 4])); k += 5
+        elif t == "Triangles":
+            n = int(tokens[k]); k += 1
+            for _ in range(n):
+                tris.append((tuple(int(x) - 1 for x in tokens[k:k + 3]), int(tokens[k + 3]))); k += 4
+        elif t in ("RequiredVertices", "Corners"):
+            n = int(tokens[k]); k += 1 + n
+        elif t in ("Dimension", "MeshVersionFormatted"):
+            k += 1
+    return pts, tets, refs, tris
+
+
+def side_marker(pts, tri, size=2.0):
+    """1..6 for the box sides x=0, x=size, y=0, y=size, z=0, z=size."""
+    for axis in range(3):
+        for s, value in ((0, 0.0), (1, size)):
+            if all(pts[v][axis] == value for v in tri):
+                return 1 + 2 * axis + s
+    raise ValueError("not on a side: %r" % (tri,))
+
+
+def write_marked_box(path, pts=None):
+    """box2.mesh (regions 1 and 2) with its 48 boundary triangles marked by
+    side (1..6), written as Medit; `pts` replaces the vertices.  Returns
+    (pts, tets, refs, [(triangle, marker)])."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    p0, tets, refs, _ = read_medit_full(os.path.join(here, "..", "data", "box2.mesh"))
+    tris = [(f, side_marker(p0, f)) for f in boundary_triangles(tets)]
+    pts = pts or p0
+    with open(path, "w") as f:
+        f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % len(pts))
+        for p in pts:
+            f.write("%.17g %.17g %.17g 0\n" % tuple(p))
+        f.write("Tetrahedra\n%d\n" % len(tets))
+        for t, r in zip(tets, refs):
+            f.write("%d %d %d %d %d\n" % (tuple(v + 1 for v in t) + (r,)))
+        f.write("Triangles\n%d\n" % len(tris))
+        for t, m in tris:
+            f.write("%d %d %d %d\n" % (tuple(v + 1 for v in t) + (m,)))
+        f.write("End\n")
+    return pts, tets, refs, tris
+
+
+def tri_area(pts, t):
+    a, b, c = (pts[v] for v in t)
+    return 0.5 * norm(cross(sub(b, a), sub(c, a)))
+
+
+def compare_json(args, a, b):
+    code, out, err = run(args.bodt, "compare", a, b, "--json")
+    if not check(code == 0, "bodt compare %s %s --json exited %d: %s" % (a, b, code, err)):
+        return None
+    try:
+        return json.loads(out)
+    except ValueError as e:
+        check(False, "compare --json: not JSON (%s): %r" % (e, out))
+        return None
+
+
+def check_identical(c, what, markers=(1, 2, 3, 4, 5, 6)):
+    """A comparison of a mesh with an unchanged copy of itself."""
+    if c is None:
+        return
+    check(c["volume_change"] == 0.0 and c["volume_change_rel"] == 0.0, "%s: volume change %r" %
+          (what, c["volume_change"]))
+    check(c["hausdorff"] == 0.0 and c["hausdorff_upper"] == 0.0 and c["hausdorff_rel"] == 0.0,
+          "%s: Hausdorff %r .. %r" % (what, c["hausdorff"], c["hausdorff_upper"]))
+    check(c["markers_kept"] is True and c["markers_lost"] == [], "%s: markers lost %r" % (what, c["markers_lost"]))
+    got = {m["marker"]: m for m in c["markers"]}
+    for k in markers:
+        m = got.get(k)
+        if check(m is not None, "%s: marker %d missing from %r" % (what, k, sorted(got))):
+            check(m["faces_before"] == m["faces_after"] == 8 and abs(m["area_before"] - 4.0) < 1e-12 and
+                  m["area_before"] == m["area_after"], "%s: marker %d: %r" % (what, k, m))
+    for key in ("vertices", "tets", "boundary_faces", "min_dihedral", "max_dihedral", "volume"):
+        check(c["quality_before"][key] == c["quality_after"][key], "%s: %s %r -> %r" %
+              (what, key, c["quality_before"][key], c["quality_after"][key]))
+
+
+def case_compare(args):
+    """compare: a mesh with itself gives 0; a boundary vertex moved out of
+    its side by delta gives Hausdorff delta (attained at that vertex), / L
+    = 2, the tent's volume delta * area / 3 and the markers kept with the
+    side's area grown; a mesh without markers loses them all."""
+    src = os.path.join(args.out, "cmp_box.mesh")
+    pts, tets, refs, tris = write_marked_box(src)
+    check_identical(compare_json(args, src, src), "a mesh with itself")
+    code, out, err = run(args.bodt, "compare", src, src)
+    check(code == 0 and "markers kept: yes" in out and "volume change" in out and "Hausdorff" in out,
+          "compare (text): %d %r %r" % (code, out, err))
+    # the centre of the top side, (1, 1, 2), raised by delta
+    top = pts.index((1.0, 1.0, 2.0))
+    delta = 0.1
+    moved = list(pts)
+    moved[top] = (1.0, 1.0, 2.0 + delta)
+    dst = os.path.join(args.out, "cmp_box_raised.mesh")
+    write_marked_box(dst, moved)
+    c = compare_json(args, src, dst)
+    if c is not None:
+        star = sum(tri_area(pts, t) for t, m in tris if top in t)
+        check(abs(c["volume_change"] - delta * star / 3.0) <= 1e-12, "volume change %r, expected %r" %
+              (c["volume_change"], delta * star / 3.0))
+        check(abs(c["volume_change_rel"] - delta * star / 3.0 / 8.0) <= 1e-12, "relative volume change %r" %
+              c["volume_change_rel"])
+        check(c["bbox_largest_side"] == 2.0, "L %r, expected 2" % c["bbox_largest_side"])
+        check(abs(c["hausdorff"] - delta) <= 1e-12, "Hausdorff %r, expected %r" % (c["hausdorff"], delta))
+        check(c["hausdorff_upper"] <= delta * (1 + 1e-3) + 1e-6, "Hausdorff upper bound %r" % c["hausdorff_upper"])
+        check(abs(c["hausdorff_rel"] - delta / 2.0) <= 1e-12, "relative Hausdorff %r, expected %r" %
+              (c["hausdorff_rel"], delta / 2.0))
+        check(c["markers_kept"] is True, "markers not kept: %r" % c["markers_lost"])
+        got = {m["marker"]: m for m in c["markers"]}
+        grown = sum(tri_area(moved, t) for t, m in tris if m == 6)
+        check(abs(got[6]["area_after"] - grown) <= 1e-12 and got[6]["area_before"] == 4.0,
+              "top side area %r -> %r, expected 4 -> %r" % (got[6]["area_before"], got[6]["area_after"], grown))
+        print("compare: raised vertex: Hausdorff %r (upper %r), volume change %r" %
+              (c["hausdorff"], c["hausdorff_upper"], c["volume_change"]))
+    # the same, symmetric: the arguments swapped give the same distance
+    c = compare_json(args, dst, src)
+    if c is not None:
+        check(abs(c["hausdorff"] - delta) <= 1e-12, "swapped: Hausdorff %r" % c["hausdorff"])
+    # a vertex pushed into the box: the distance is still delta, at the vertex
+    moved[top] = (1.0, 1.0, 2.0 - delta)
+    dented = os.path.join(args.out, "cmp_box_dented.mesh")
+    write_marked_box(dented, moved)
+    c = compare_json(args, src, dented)
+    if c is not None:
+        check(abs(c["hausdorff"] - delta) <= 1e-12, "dent: Hausdorff %r, expected %r" % (c["hausdorff"], delta))
+        check(c["volume_change"] < 0, "dent: volume change %r" % c["volume_change"])
+    # box2.mesh has no Triangles: every marker is lost
+    c = compare_json(args, src, os.path.join(args.data, "box2.mesh"))
+    if c is not None:
+        check(c["markers_kept"] is False and c["markers_lost"] == [1, 2, 3, 4, 5, 6],
+              "markers lost %r" % c["markers_lost"])
+        check(c["hausdorff"] == 0.0, "same surface, other markers: Hausdorff %r" % c["hausdorff"])
+    code, out, err = run(args.bodt, "compare", src, os.path.join(args.data, "box2.mesh"))
+    check(code == 0 and "markers kept: no; lost: 1 2 3 4 5 6" in out, "compare (text), lost markers: %r" % out)
+
+
+def case_convert(args):
+    """convert: .mesh -> .node -> .mesh keeps vertices, tets, regions and
+    marked faces (bodt compare says 0, 0, kept); --format; errors."""
+    src = os.path.join(args.out, "conv_box.mesh")
+    pts, tets, refs, tris = write_marked_box(src)
+    node = os.path.join(args.out, "conv_box.node")
+    back = os.path.join(args.out, "conv_box_back.mesh")
+    for f in (node, back):
+        if os.path.exists(f):
+            os.remove(f)
+    code, out, err = run(args.bodt, "convert", src, node)
+    check(code == 0 and ("wrote " + node) in out, "convert to .node: %d %r %r" % (code, out, err))
+    for ext in (".node", ".ele", ".face"):
+        check(os.path.exists(node[:-5] + ext), "%s not written" % (node[:-5] + ext))
+    code, out, err = run(args.bodt, "convert", node, back)
+    check(code == 0, "convert back: %d %r" % (code, err))
+    if not os.path.exists(back):
+        check(False, "%s not written" % back)
+        return
+    check_identical(compare_json(args, src, back), ".mesh -> .node -> .mesh")
+    p1, t1, r1, f1 = read_medit_full(back)
+    check(p1 == pts, "the vertices changed")
+    check(sorted(zip((tuple(sorted(t)) for t in t1), r1)) == sorted(zip((tuple(sorted(t)) for t in tets), refs)),
+          "the tets or their regions changed")
+    check(sorted((tuple(sorted(t)), m) for t, m in f1 if m) == sorted((tuple(sorted(t)), m) for t, m in tris),
+          "the marked triangles changed")
+    # --quiet: nothing printed
+    code, out, err = run(args.bodt, "convert", src, back, "--quiet")
+    check(code == 0 and out == "" and err == "", "convert --quiet printed %r %r" % (out, err))
+    # --format whatever the extension
+    txt = os.path.join(args.out, "conv_box.txt")
+    code, out, err = run(args.bodt, "convert", src, txt, "--format", "mesh")
+    check(code == 0 and os.path.exists(txt) and open(txt).read().startswith("MeshVersionFormatted"),
+          "convert --format mesh: %d %r" % (code, err))
+    # errors: bad format name (1), unknown output extension (4), input (2)
+    code, out, err = run(args.bodt, "convert", src, txt, "--format", "nonsense")
+    check(code == 1 and "nonsense" in err and "gmsh22-binary" in err, "--format nonsense: %d %r" % (code, err))
+    code, out, err = run(args.bodt, "convert", src, os.path.join(args.out, "conv.xyz"))
+    check(code == 4, "convert to .xyz: exit %d, expected 4: %r" % (code, err))
+    code, out, err = run(args.bodt, "convert", os.path.join(args.out, "missing.mesh"), back)
+    check(code == 2, "convert from a missing file: exit %d" % code)
+    code, out, err = run(args.bodt, "convert", src)
+    check(code == 1, "convert with one file: exit %d" % code)
+
+
+def case_convert_formats(args):
+    """Every written format read back (.meshb, .msh in four variants, .vtu)
+    compares equal to the source; .inp is written with its sections."""
+    src = os.path.join(args.out, "fmt_box.mesh")
+    write_marked_box(src)
+    for ext, fmt in ((".meshb", None), (".msh", None), (".msh", "gmsh-binary"), (".msh", "gmsh22"),
+                     (".msh", "gmsh22-binary"), (".vtu", None), (".vtu", "vtu")):
+        dst = os.path.join(args.out, "fmt_box_%s%s" % (fmt or "auto", ext))
+        argv = ["convert", src, dst] + (["--format", fmt] if fmt else [])
+        code, out, err = run(args.bodt, *argv)
+        if not check(code == 0, "bodt %s: exit %d %r" % (" ".join(argv), code, err)):
+            continue
+        c = compare_json(args, src, dst)
+        if c is None:
+            continue
+        check_identical(c, "%s (%s)" % (ext, fmt or "by extension"),
+                        markers=() if ext == ".vtu" else (1, 2, 3, 4, 5, 6))
+        if ext != ".vtu":
+            check(c["markers_kept"], "%s: markers lost %r" % (dst, c["markers_lost"]))
+    inp = os.path.join(args.out, "fmt_box.inp")
+    code, out, err = run(args.bodt, "convert", src, inp)
+    if check(code == 0 and os.path.exists(inp), "convert to .inp: %d %r" % (code, err)):
+        text = open(inp).read().upper()
+        check("*NODE" in text and "C3D4" in text and "*ELSET" in text, "the .inp lacks its sections")
+    code, out, err = run(args.bodt, "quality", inp)
+    check(code == 2, ".inp is written only: quality exit %d" % code)
+
+
+def case_param(args):
+    """--param: the value reaches the library (--verbose echoes it; ops=1
+    turns the flips of --ops flip,insert off); unknown keys and bad values
+    are usage errors listing the keys."""
+    src = os.path.join(args.out, "param_pushed.mesh")
+    with open(os.path.join(args.data, "box2.mesh")) as f:
+        text = f.read()
+    with open(src, "w") as f:
+        f.write(text.replace("\n1.25 0.875 1.125 0\n", "\n1 1 1.9 0\n"))
+    dst = os.path.join(args.out, "param_out.mesh")
+    code, out, err = run(args.bodt, "improve", src, dst, "--verbose", "--param", "min_stretch=0.0125",
+                         "--param", "feature_angle=40", "--param=backtrack_steps=7")
+    check(code == 0, "--param: exit %d %r" % (code, err))
+    check("min_stretch = 0.0125\n" in err and "feature_angle = 40\n" in err and "backtrack_steps = 7\n" in err,
+          "--verbose does not echo the parameters: %r" % err)
+    check("tolerance = 1e-06\n" in err, "--verbose does not list the defaults: %r" % err)
+    # the observable effect: --param ops wins over --ops
+    code, summary, out, err = improve_summary(args, src, dst, "--ops", "flip,insert")
+    check(code == 0 and summary is not None and summary[1] + summary[2] > 0,
+          "--ops flip,insert did nothing: %r %r" % (summary, err))
+    p0, t0 = read_medit(src)
+    code, summary, out, err = improve_summary(args, src, dst, "--ops", "flip,insert", "--param", "ops=1")
+    check(code == 0 and summary is not None and summary[1:] == (0, 0, 0),
+          "--param ops=1: summary %r %r" % (summary, err))
+    if os.path.exists(dst):
+        p1, t1 = read_medit(dst)
+        check(t1 == t0 and p1[13] != p0[13], "--param ops=1 did not smooth only")
+    os.remove(dst)
+    for bad, words in ((["--param", "nonsense=1"], ["nonsense", "min_stretch", "qn_max_iterations", "fit_tolerance"]),
+                       (["--param", "min_stretch"], ["min_stretch"]),
+                       (["--param", "min_stretch=abc"], ["abc"]),
+                       (["--param", "ops=1.5"], ["1.5", "whole"]),
+                       (["--param", "min_stretch=1e-2x"], ["1e-2x"]),
+                       (["--param", "weight_c=2"], ["weight_c"]),      # out of range: the library says no
+                       (["--param"], ["--param"])):
+        code, out, err = run(args.bodt, "improve", src, dst, *bad)
+        check(code == 1, "%s: exit %d, expected 1" % (" ".join(bad), code))
+        for w in words:
+            check(w in err, "%s: %r not in %r" % (" ".join(bad), w, err))
+        check(not os.path.exists(dst), "%s wrote the output" % " ".join(bad))
+
+
+def run_on_pty(argv):
+    """Runs argv with stderr on a pseudo-terminal; (code, stdout, what the terminal got)."""
+    import pty
+    import select
+    master, slave = pty.openpty()
+    p = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=slave, universal_newlines=True)
+    os.close(slave)
+    chunks = []
+    while True:
+        r, _, _ = select.select([master], [], [], 60)
+        if not r:
+            break
+        try:
+            data = os.read(master, 4096)
+        except OSError:  # EIO: the child closed the terminal
+            break
+        if not data:
+            break
+        chunks.append(data)
+    out, _ = p.communicate(timeout=60)
+    os.close(master)
+    return p.returncode, out, b"".join(chunks).decode("utf-8", "replace")
+
+
+def case_progress(args):
+    """The progress bar is on stderr only when it is a terminal; --verbose
+    prints a line per step anyway; --quiet prints nothing."""
+    src = os.path.join(args.out, "progress_pushed.mesh")
+    with open(os.path.join(args.data, "box2.mesh")) as f:
+        text = f.read()
+    with open(src, "w") as f:
+        f.write(text.replace("\n1.25 0.875 1.125 0\n", "\n1 1 1.9 0\n"))
+    dst = os.path.join(args.out, "progress_out.mesh")
+    # not a terminal: stderr stays empty
+    code, summary, out, err = improve_summary(args, src, dst, "--iterations", "4")
+    check(code == 0 and summary is not None, "improve: %d %r" % (code, err))
+    check(err == "", "stderr is not a terminal, yet it got %r" % err)
+    # a terminal: the bar, redrawn in place, with the angles
+    code, out, term = run_on_pty([args.bodt, "improve", src, dst, "--iterations", "4"])
+    check(code == 0, "improve on a pty: exit %d %r" % (code, term))
+    m = SUMMARY.search(out)
+    check(m is not None, "improve on a pty: no summary on stdout %r" % out)
+    bars = re.findall(r"\r\[[#.]{20}\] step (\d+)/4  min (\d+\.\d\d) deg  max (\d+\.\d\d) deg  flips (\d+)", term)
+    check(len(bars) >= 1, "no progress bar on the terminal: %r" % term)
+    if m and bars:
+        check(len(bars) == int(m.group(1)), "%d bars for %s steps" % (len(bars), m.group(1)))
+        check([int(b[0]) for b in bars] == list(range(1, len(bars) + 1)), "bar steps %r" % [b[0] for b in bars])
+        check(int(bars[-1][3]) == int(m.group(2)), "the bar's flips %s, the summary's %s" % (bars[-1][3], m.group(2)))
+    if os.path.exists(dst) and bars:
+        q = quality_of(dst)
+        check(abs(float(bars[-1][1]) - q["min_dihedral"]) <= 0.006, "the bar's last min %s, the file's %r" %
+              (bars[-1][1], q["min_dihedral"]))
+    check(term.endswith("\n"), "the bar's line is not ended: %r" % term[-40:])
+    # --quiet on a terminal: nothing at all
+    code, out, term = run_on_pty([args.bodt, "improve", src, dst, "--iterations", "4", "--quiet"])
+    check(code == 0 and out == "" and term == "", "--quiet printed %r / %r" % (out, term))
+    code, out, err = run(args.bodt, "improve", src, dst, "-q")
+    check(code == 0 and out == "" and err == "" and os.path.exists(dst), "-q: %d %r %r" % (code, out, err))
+    # --verbose without a terminal: a line per step
+    code, summary, out, err = improve_summary(args, src, dst, "--iterations", "4", "--verbose")
+    lines = re.findall(r"^step (\d+)/4: min dihedral (\S+), max dihedral (\S+),", err, re.M)
+    check(summary is not None and len(lines) == summary[0], "--verbose: %d step lines for %r: %r" %
+          (len(lines), summary, err))
+    code, out, err = run(args.bodt, "improve", src, dst, "--quiet", "--verbose")
+    check(code == 1 and "exclude" in err, "--quiet --verbose: %d %r" % (code, err))
+
+
+def case_histogram(args):
+    """quality --histogram: the text bars and the JSON sum to 6 x tets and
+    agree with the independent count."""
+    path = os.path.join(args.data, "box2.mesh")
+    ref = quality_of(path)
+    code, out, err = run(args.bodt, "quality", path, "--histogram")
+    check(code == 0, "quality --histogram: %d %r" % (code, err))
+    rows = re.findall(r"^\[\s*(\d+),\s*(\d+)([)\]])\s+(\d+) \|(#*)$", out, re.M)
+    check(len(rows) == 23, "%d histogram rows in %r" % (len(rows), out))
+    if len(rows) == 23:
+        check([int(r[0]) for r in rows] == EDGES[:-1] and [int(r[1]) for r in rows] == EDGES[1:],
+              "bin edges %r" % rows)
+        counts = [int(r[3]) for r in rows]
+        check(sum(counts) == 6 * 48, "the bars sum to %d, expected %d" % (sum(counts), 6 * 48))
+        check_histogram(counts, ref["angles"])
+        top = max(counts)
+        for r in rows:
+            n = int(r[3])
+            check((len(r[4]) > 0) == (n > 0) and (n != top or len(r[4]) == 50), "bar %r" % (r,))
+    check("min dihedral" in out, "the table is missing: %r" % out)
+    code, out, err = run(args.bodt, "quality", path, "--histogram", "--json")
+    q = json.loads(out) if code == 0 else None
+    if check(q is not None, "quality --histogram --json: %d %r" % (code, err)):
+        check(sum(q["dihedral_histogram"]) == 6 * q["tets"], "JSON histogram sums to %d" % sum(q["dihedral_histogram"]))
+        check(q.get("dihedral_bin_edges") == EDGES, "dihedral_bin_edges %r" % q.get("dihedral_bin_edges"))
+        check_histogram(q["dihedral_histogram"], ref["angles"])
+
+
+def case_help(args):
+    """Each command's manual page: same text by `bodt help CMD` and `bodt
+    CMD --help`, with the sections of a man page and the exit codes."""
+    sections = ["NAME", "SYNOPSIS", "DESCRIPTION", "OPTIONS", "FILES", "EXIT STATUS", "EXAMPLES"]
+    for cmd, must in (("improve", ["--mode", "--iterations", "--ops", "--keep-surface", "--param", "min_stretch",
+                                   "--quiet", "--verbose", "--format"]),
+                      ("quality", ["--json", "--histogram"]),
+                      ("compare", ["Hausdorff", "largest side", "markers kept"]),
+                      ("convert", ["--format", "gmsh22-binary", "abaqus"]),
+                      ("report", ["-o"])):
+        code, page, err = run(args.bodt, "help", cmd)
+        check(code == 0, "help %s: exit %d" % (cmd, code))
+        code2, page2, _ = run(args.bodt, cmd, "--help")
+        check(code2 == 0 and page2 == page, "%s --help differs from help %s" % (cmd, cmd))
+        code3, page3, _ = run(args.bodt, cmd, "-h")
+        check(code3 == 0 and page3 == page, "%s -h differs" % cmd)
+        pos = [page.find("\n" + s + "\n") if s != "NAME" else (0 if page.startswith("NAME\n") else -1)
+               for s in sections]
+        check(all(p >= 0 for p in pos) and pos == sorted(pos), "help %s: sections %r" % (cmd, pos))
+        check(("bodt " + cmd) in page, "help %s does not name the command" % cmd)
+        for w in must:
+            check(w in page, "help %s lacks %r" % (cmd, w))
+        for code_line in ("0  success", "1  usage error", "2  an input", "3  the improvement failed",
+                          "4  the output could not be written"):
+            check(code_line in page, "help %s: exit status %r missing" % (cmd, code_line))
+        check(max(len(l) for l in page.splitlines()) <= 80, "help %s: a line is wider than 80 columns" % cmd)
+    code, page, err = run(args.bodt, "--help")
+    check(code == 0 and all(("  " + c + " ") in page for c in ("improve", "quality", "compare", "convert", "report")),
+          "--help does not list every command: %r" % page)
+    code, page2, err = run(args.bodt, "help")
+    check(code == 0 and page2 == page, "bodt help differs from bodt --help")
+    code, _, err = run(args.bodt, "help", "nonsense")
+    check(code == 1 and "nonsense" in err, "help nonsense: %d %r" % (code, err))
+
+
+def case_report(args):
+    """report: writes an HTML page; -o is required; exit codes."""
+    src = os.path.join(args.data, "box2.mesh")
+    dst = os.path.join(args.out, "report_improved.mesh")
+    code, out, err = run(args.bodt, "improve", src, dst, "--mode", "laplace", "--iterations", "3", "-q")
+    check(code == 0, "improve: %d %r" % (code, err))
+    html = os.path.join(args.out, "report.html")
+    if os.path.exists(html):
+        os.remove(html)
+    code, out, err = run(args.bodt, "report", src, dst, "-o", html)
+    check(code == 0 and ("wrote " + html) in out, "report: %d %r %r" % (code, out, err))
+    if check(os.path.exists(html), "%s not written" % html):
+        text = open(html).read()
+        check("<html" in text.lower() and "</html>" in text.lower(), "not an HTML page")
+        check("box2.mesh" in text and "report_improved.mesh" in text, "the report does not name the meshes")
+    code, out, err = run(args.bodt, "report", src, dst, "--output=" + html, "--quiet")
+    check(code == 0 and out == "" and err == "", "report --quiet: %d %r %r" % (code, out, err))
+    code, out, err = run(args.bodt, "report", src, dst)
+    check(code == 1 and "-o" in err, "report without -o: %d %r" % (code, err))
+    code, out, err = run(args.bodt, "report", src, "-o", html)
+    check(code == 1, "report with one mesh: %d" % code)
+    code, out, err = run(args.bodt, "report", src, os.path.join(args.out, "missing.mesh"), "-o", html)
+    check(code == 2 and "missing.mesh" in err, "report of a missing mesh: %d %r" % (code, err))
+    code, out, err = run(args.bodt, "report", src, dst, "-o", os.path.join(args.out, "no_such_dir", "r.html"))
+    check(code == 4, "report to an unwritable path: exit %d, expected 4" % code)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bodt", required=True)
     ap.add_argument("--data", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("case", choices=["quality_json", "improve", "improve_ops", "exit_codes", "improve_surface",
-                                     "surface_without_tetgen", "improve_opt_weighted", "improve_phased"])
+                                     "surface_without_tetgen", "improve_opt_weighted", "improve_phased",
+                                     "compare", "convert", "convert_formats", "param", "progress", "histogram",
+                                     "help", "report"])
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     globals()["case_" + args.case](args)

@@ -473,6 +473,18 @@ contains
     call bodt_mesh_get_feature_edges(back, edges)
     call check(all(shape(edges) == [2, 1]) .and. all(edges(:, 1) == [1, 2]), 'feature edges through the file')
     call bodt_mesh_destroy(back)
+
+    ! Gmsh 4.1 binary, chosen explicitly (the name says nothing)
+    call bodt_mesh_write_format(mesh, 'test_bodt_f_gmsh.bin', BODT_FORMAT_GMSH_BINARY)
+    call bodt_mesh_read_format('test_bodt_f_gmsh.bin', BODT_FORMAT_GMSH, BODT_CREATE_DEFAULT, back)
+    call bodt_mesh_get_vertices(back, got_points)
+    call bodt_mesh_get_tets(back, got)
+    call check(all(abs(got_points - points) <= 0) .and. all(got == tets), 'vertices and tets through Gmsh binary')
+    call bodt_mesh_get_regions(back, got_markers)
+    call check(all(got_markers == regions), 'regions through Gmsh binary')
+    call bodt_mesh_destroy(back)
+    call bodt_mesh_write_format(mesh, 'test_bodt_f.dat', 99, ierr)
+    call check_status(ierr, BODT_ERR_INVALID_ARGUMENT, 'an unknown format refused', mesh)
     call bodt_mesh_destroy(mesh)
 
     call bodt_mesh_read('no such dir/missing.mesh  ', back, ierr=ierr)

@@ -31,6 +31,7 @@ from ._version import __version__
 from .enums import (
     OPS_MODE_DEFAULT,
     CreateFlag,
+    Format,
     GeometryClass,
     Measure,
     Mode,
@@ -70,6 +71,7 @@ __all__ = [
     "BoundaryFaces",
     "CancelledError",
     "CreateFlag",
+    "Format",
     "Error",
     "FaceRegions",
     "FileError",

@@ -10,6 +10,7 @@ from enum import IntEnum, IntFlag
 __all__ = [
     "OPS_MODE_DEFAULT",
     "CreateFlag",
+    "Format",
     "GeometryClass",
     "Measure",
     "Mode",
@@ -131,3 +132,18 @@ class Shape(IntEnum):
     LINE = 3
     ARC = 4
     CIRCLE = 5
+
+
+class Format(IntEnum):
+    """enum bodt_format: mesh file formats (AUTO: by the extension)."""
+
+    AUTO = 0
+    MEDIT = 1
+    MEDIT_BINARY = 2
+    TETGEN = 3
+    GMSH = 4
+    GMSH_BINARY = 5
+    GMSH22 = 6
+    GMSH22_BINARY = 7
+    VTU = 8
+    ABAQUS = 9

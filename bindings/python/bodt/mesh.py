@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 
 from ._arrays import float_array, index_array, int32, pointer
 from ._library import STEP_CALLBACK, check, lib
-from .enums import CreateFlag, Measure, Mode, Param
+from .enums import CreateFlag, Format, Measure, Mode, Param
 from .results import (
     BoundaryFaces,
     FaceRegions,
@@ -93,13 +93,22 @@ class Mesh:
         self._own(handle.value, base)
 
     @classmethod
-    def read(cls, path: str | os.PathLike[str], accept_inverted: bool = False, base: int = 0) -> "Mesh":
-        """A mesh from a .mesh, .node or .ele file (bodt_mesh_read_ex), counting from ``base`` (0 or 1)."""
+    def read(
+        cls,
+        path: str | os.PathLike[str],
+        accept_inverted: bool = False,
+        base: int = 0,
+        format: Format = Format.AUTO,  # noqa: A002 (bodt.h's name)
+    ) -> "Mesh":
+        """A mesh from a file (bodt_mesh_read_format), counting from ``base`` (0 or 1).
+
+        The format is the extension's (.mesh, .meshb, .node/.ele, .msh, .vtu) unless ``format`` says.
+        """
         if base not in (0, 1):
             raise ValueError(f"base is {base}, not 0 or 1")
         flags = _flags(accept_inverted) | (CreateFlag.ONE_BASED if base == 1 else CreateFlag.DEFAULT)
         handle = c_void_p()
-        check(lib.bodt_mesh_read_ex(os.fsencode(path), flags, byref(handle)), None)
+        check(lib.bodt_mesh_read_format(os.fsencode(path), int32(format, "format"), flags, byref(handle)), None)
         mesh = cls.__new__(cls)
         mesh._own(handle.value, base)
         return mesh
@@ -439,6 +448,6 @@ class Mesh:
 
     # -------------------------------------------------------------- files
 
-    def write(self, path: str | os.PathLike[str]) -> None:
-        """Write to a .mesh, .node or .ele file, format by extension (bodt_mesh_write)."""
-        self._check(lib.bodt_mesh_write(self._handle, os.fsencode(path)))
+    def write(self, path: str | os.PathLike[str], format: Format = Format.AUTO) -> None:  # noqa: A002
+        """Write to a file (bodt_mesh_write_format), in the extension's format unless ``format`` says."""
+        self._check(lib.bodt_mesh_write_format(self._handle, os.fsencode(path), int32(format, "format")))

@@ -449,6 +449,26 @@ class TestFiles(ErrorAssertions):
         with self.assertRaisesRegex(ValueError, "base is 2, not 0 or 1"):
             bodt.Mesh.read(path, base=2)
 
+    def test_formats_chosen_explicitly(self):
+        points, tets = meshes.box(2, jitter=0.2)
+        with bodt.Mesh(points, tets) as mesh:
+            mesh.set_regions(np.arange(48) // 24 + 1)
+            for fmt in (bodt.Format.MEDIT_BINARY, bodt.Format.GMSH_BINARY, bodt.Format.GMSH22, bodt.Format.VTU):
+                path = os.path.join(self.dir.name, f"box.{fmt.name.lower()}")  # the extension says nothing
+                mesh.write(path, format=fmt)
+                read_format = bodt.Format.GMSH if fmt in (bodt.Format.GMSH_BINARY, bodt.Format.GMSH22) else fmt
+                with bodt.Mesh.read(path, format=read_format) as read:
+                    np.testing.assert_array_equal(read.points, points, fmt.name)
+                    np.testing.assert_array_equal(read.tets, tets, fmt.name)
+                    np.testing.assert_array_equal(read.regions, np.arange(48) // 24 + 1, fmt.name)
+            with self.assertError(bodt.InvalidArgumentError, bodt.Status.INVALID_ARGUMENT, "unknown format 42"):
+                mesh.write(os.path.join(self.dir.name, "x.mesh"), format=42)
+        inp = os.path.join(self.dir.name, "box.inp")
+        with bodt.Mesh(points, tets) as mesh:
+            mesh.write(inp)
+        with self.assertError(bodt.UnsupportedError, bodt.Status.UNSUPPORTED, "written, not read"):
+            bodt.Mesh.read(inp)
+
     def test_tetgen_round_trip(self):
         points, tets = meshes.box(2)
         path = os.path.join(self.dir.name, "box.node")

@@ -135,7 +135,7 @@ class TestCffiHeader(unittest.TestCase):
         prefixes = {
             bodt.Status: "BODT_ERR_", bodt.CreateFlag: "BODT_CREATE_", bodt.VertexClass: "BODT_VERTEX_",
             bodt.Measure: "BODT_MEASURE_", bodt.Mode: "BODT_MODE_", bodt.Param: "BODT_PARAM_", bodt.Op: "BODT_OP_",
-            bodt.GeometryClass: "BODT_GEOMETRY_", bodt.Shape: "BODT_SHAPE_",
+            bodt.GeometryClass: "BODT_GEOMETRY_", bodt.Shape: "BODT_SHAPE_", bodt.Format: "BODT_FORMAT_",
         }
         for enum, prefix in prefixes.items():
             for name, member in enum.__members__.items():

@@ -48,6 +48,7 @@ class TestAgainstHeader(unittest.TestCase):
         "bodt_op": (bodt.Op, "BODT_OP_"),
         "bodt_geometry_class": (bodt.GeometryClass, "BODT_GEOMETRY_"),
         "bodt_shape": (bodt.Shape, "BODT_SHAPE_"),
+        "bodt_format": (bodt.Format, "BODT_FORMAT_"),
     }
 
     def test_every_enum_member_with_its_value(self):

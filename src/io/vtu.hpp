@@ -1,0 +1,53 @@
+// VTK XML UnstructuredGrid (.vtu), the format ParaView reads natively.
+//
+// What a written file holds (one Piece, inline base64 "binary" arrays,
+// header_type UInt64, LittleEndian, no compression; version 1.0):
+//   Points      Float64 x 3
+//   Cells       connectivity Int32, offsets Int32 (Int64 past 2^31 - 1
+//               entries), types UInt8.  Cell order: every tet (VTK_TETRA,
+//               10; cell i is tet i), then every marked triangle
+//               (VTK_TRIANGLE, 5), then every feature edge (VTK_LINE, 3).
+//   CellData    region (Int32)  when there are regions: the tet's region,
+//                               -1 on triangle and line cells
+//               marker (Int32)  when there are marked triangles: the
+//                               triangle's marker, -1 on tet and line cells
+//               one Float64 array per MeshData::tet_fields entry, NaN on
+//               triangle and line cells
+//   PointData   fixed (UInt8)   when there are fixed vertices: 1 or 0
+//
+// Why: boundary markers and feature edges survive a write -> read as cells
+// of their own (VTK has no other place for them), and the reader tells the
+// cells apart by their VTK type, never by the -1 / NaN fillers, so any
+// marker or region value (also -1) round-trips.  NaN keeps the non-tet cells
+// out of ParaView's Threshold on a quality field and out of its colour range;
+// "Extract Cells By Type" keeps only the tets.  Binary rather than ASCII:
+// exact for doubles by construction and about half the size of %.17g text.
+//
+// The reader takes what the writer writes and what ParaView / VTK / meshio
+// write uncompressed: ASCII or inline base64 DataArrays (header UInt32 or
+// UInt64, header and data encoded together or separately), Float32 or
+// Float64 points, any integer type for cells and the region / marker /
+// fixed arrays.  Cells of type 10, 5 and 3 are read as above (triangles
+// without a marker array get marker 0), VTK_VERTEX cells are ignored;
+// anything else (hexahedra, quadratic tets, polygons ...) is refused, as are
+// appended data, compression, big-endian files, more than one Piece and a
+// file without tets.  Without a `region` array, regions stay empty; `fixed`
+// comes back sorted, each vertex once.  Other arrays are ignored (tet_fields
+// are not read back).  Indices are
+// 0-based: the returned MeshData has base 0.  Every problem is an
+// Error(BODT_ERR_IO) "<path>:<line>: ...".
+#pragma once
+
+#include "io/mesh_io.hpp"
+
+#include <string>
+
+namespace bodt {
+
+MeshData read_vtu(const std::string& path);
+// Throws Error(BODT_ERR_INVALID_ARGUMENT) for inconsistent MeshData (array
+// sizes, a tet field named like one of the arrays above or twice) and
+// Error(BODT_ERR_IO) when the file cannot be written.
+void write_vtu(const std::string& path, const MeshData& data);
+
+}  // namespace bodt

@@ -1,0 +1,520 @@
+// test_io_gmsh: the Gmsh .msh reader and writer (src/io/gmsh.cpp), white box.
+//
+//   test_io_gmsh <data dir> <scratch dir>
+//
+// <data dir> is tests/data (the Gmsh-made files are in its gmsh/ folder),
+// <scratch dir> an existing or creatable directory for the files written here.
+//
+//   round_trip      a 27-vertex, 48-tet mesh with odd coordinates, regions
+//                   (0, 1, 2, -3 interleaved), face markers (0 among them),
+//                   feature edges and fixed vertices, written as 4.1 / 2.2,
+//                   ASCII / binary, from base 0 and base 1, read back:
+//                   coordinates bit-exact, tets, regions, the nonzero
+//                   markers, feature edges and fixed vertices unchanged
+//   gmsh_files      the four files Gmsh made from tests/data/gmsh/box.geo:
+//                   23 vertices, 48 tets, 24 in region 1 and 24 in region
+//                   2 of volume 1 each, 8 faces with marker 10 on z = 0, one
+//                   feature edge (0,0,0)-(0,0,1), the origin fixed; the four
+//                   read the same
+//   sparse_tags     hand-written files with sparse, unordered node tags,
+//                   parametric nodes, skipped quads, unknown 2-D types,
+//                   other sections: renumbered in file order, base 0
+//   malformed       many corruptions of those files: each an Error with
+//                   BODT_ERR_IO naming the file and a line or byte offset
+//   bad_write       the writer refuses a bad version and bad indices
+#include "io/gmsh.hpp"
+
+#include "bodt.h"
+#include "common/error.hpp"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core_checks.hpp"
+
+using bodt::Error;
+using bodt::MeshData;
+
+namespace {
+
+std::string g_data, g_scratch;
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail_msg("cannot read %s", path.c_str());
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+void spit(const std::string& path, const std::string& content) {
+    std::ofstream out(path, std::ios::binary);
+    out << content;
+    if (!out) fail_msg("cannot write %s", path.c_str());
+}
+
+std::string scratch(const std::string& name) { return g_scratch + "/" + name; }
+std::string data(const std::string& name) { return g_data + "/gmsh/" + name; }
+
+double tet_volume(const MeshData& d, size_t t) {
+    const double* p[4];
+    for (int k = 0; k < 4; ++k) p[k] = &d.xyz[3 * static_cast<size_t>(d.tets[4 * t + k] - d.base)];
+    double e[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) e[i][k] = p[i + 1][k] - p[0][k];
+    return (e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+            e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+           6.0;
+}
+
+// A 2 x 2 x 2 grid of cubes, six tets each (positively oriented), with
+// jittered coordinates that %.6g would not reproduce; regions, markers,
+// edges and fixed vertices.
+MeshData make_mesh(int base) {
+    MeshData d;
+    d.base = base;
+    const int n = 2;
+    auto id = [&](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
+    for (int k = 0; k <= n; ++k)
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                d.xyz.push_back(i / 3.0 + 1e-3 * std::sin(1.0 + i + 7 * j + 13 * k));
+                d.xyz.push_back(j * 0.7 + 1e-17 * k - 12345.678901234567);
+                d.xyz.push_back(std::ldexp(k + 0.1, -30 + 2 * i));
+            }
+    static const int kuhn[6][4][3] = {
+        {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {1, 1, 1}}, {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {1, 1, 1}},
+        {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 1, 1}}, {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {1, 1, 1}},
+        {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}}, {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
+    int t = 0;
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                for (const auto& tet : kuhn) {
+                    for (const auto& c : tet) d.tets.push_back(id(i + c[0], j + c[1], k + c[2]) + base);
+                    static const int32_t regions[] = {1, 1, 2, 0, 2, 2, -3, 1};
+                    d.regions.push_back(regions[(t++ / 5) % 8]);
+                }
+    for (size_t k = 0; k < d.regions.size(); ++k)  // positively oriented, as writers expect
+        if (tet_volume(d, k) < 0) std::swap(d.tets[4 * k + 2], d.tets[4 * k + 3]);
+    // the bottom faces z = 0, markers 5, 7 and 0 mixed
+    int f = 0;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const int32_t a = id(i, j, 0) + base, b = id(i + 1, j, 0) + base, c = id(i + 1, j + 1, 0) + base,
+                          e = id(i, j + 1, 0) + base;
+            d.triangles.insert(d.triangles.end(), {a, c, b, a, e, c});
+            static const int32_t markers[] = {5, 7, 0, 5, 5, 7, 7, 0};
+            d.tri_markers.push_back(markers[f++]);
+            d.tri_markers.push_back(markers[f++]);
+        }
+    // feature edges along x at y = z = 0 and along z at x = y = 0
+    for (int i = 0; i < n; ++i) d.feature_edges.insert(d.feature_edges.end(), {id(i, 0, 0) + base, id(i + 1, 0, 0) + base});
+    for (int k = 0; k < n; ++k) d.feature_edges.insert(d.feature_edges.end(), {id(0, 0, k) + base, id(0, 0, k + 1) + base});
+    d.fixed = {id(0, 0, 0) + base, id(n, n, n) + base, id(n, 0, n) + base};
+    return d;
+}
+
+// `a` as it should read back: the file's base and no marker-0 faces.
+std::vector<int32_t> rebased(const std::vector<int32_t>& v, int from, int to) {
+    std::vector<int32_t> out(v);
+    for (int32_t& x : out) x = x - from + to;
+    return out;
+}
+
+void check_same(const MeshData& in, const MeshData& out, const char* what) {
+    CHECK(out.xyz.size() == in.xyz.size(), "%zu coordinates, expected %zu", out.xyz.size(), in.xyz.size());
+    CHECK(std::memcmp(out.xyz.data(), in.xyz.data(), in.xyz.size() * sizeof(double)) == 0, "coordinates differ");
+    const int b = out.base;
+    CHECK(b == 1, "base %d, expected 1 (tags 1..n in order)", b);
+    CHECK(out.tets == rebased(in.tets, in.base, b), "tets differ");
+    CHECK(out.regions == in.regions, "regions differ");
+    std::vector<int32_t> tris, markers;
+    for (size_t f = 0; f < in.tri_markers.size(); ++f)
+        if (in.tri_markers[f] != 0) {
+            for (int k = 0; k < 3; ++k) tris.push_back(in.triangles[3 * f + k] - in.base + b);
+            markers.push_back(in.tri_markers[f]);
+        }
+    CHECK(out.triangles == tris, "triangles differ (%zu, expected %zu)", out.triangles.size() / 3, tris.size() / 3);
+    CHECK(out.tri_markers == markers, "markers differ");
+    CHECK(out.feature_edges == rebased(in.feature_edges, in.base, b), "feature edges differ");
+    CHECK(out.fixed == rebased(in.fixed, in.base, b), "fixed vertices differ");
+}
+
+struct Variant {
+    int version;
+    bool binary;
+    const char* name;
+};
+constexpr Variant kVariants[] = {
+    {41, false, "41_ascii"}, {41, true, "41_binary"}, {22, false, "22_ascii"}, {22, true, "22_binary"}};
+
+void test_round_trip(void** /*state*/) {
+    for (int base = 0; base <= 1; ++base) {
+        const MeshData in = make_mesh(base);
+        for (const Variant& v : kVariants) {
+            char what[80];
+            std::snprintf(what, sizeof what, "round trip %s from base %d", v.name, base);
+            const std::string path = scratch(std::string("round_") + v.name + "_" + std::to_string(base) + ".msh");
+            try {
+                bodt::write_gmsh(path, in, v.version, v.binary);
+                check_same(in, bodt::read_gmsh(path), what);
+                // and again from what was read: the same file
+                const std::string again = path + ".again.msh";
+                bodt::write_gmsh(again, bodt::read_gmsh(path), v.version, v.binary);
+                CHECK(slurp(again) == slurp(path), "rewriting what was read changes the file");
+            } catch (const Error& e) {
+                CHECK(false, "%s", e.what());
+            }
+        }
+    }
+    // no regions at all: region 0 everywhere, written without a physical group
+    const char* what = "round trip without regions";
+    MeshData in = make_mesh(0);
+    in.regions.clear();
+    in.tri_markers.assign(in.tri_markers.size(), 0);
+    const std::string path = scratch("round_plain.msh");
+    bodt::write_gmsh(path, in, 41, false);
+    const MeshData out = bodt::read_gmsh(path);
+    CHECK(out.regions == std::vector<int32_t>(in.tets.size() / 4, 0), "regions are not all 0");
+    CHECK(out.triangles.empty() && out.tri_markers.empty(), "marker-0 faces were written");
+}
+
+void test_gmsh_files(void** /*state*/) {
+    const char* names[] = {"box41.msh", "box41_bin.msh", "box22.msh", "box22_bin.msh"};
+    MeshData first;
+    for (const char* name : names) {
+        const char* what = name;
+        MeshData d;
+        try {
+            d = bodt::read_gmsh(data(name));
+        } catch (const Error& e) {
+            CHECK(false, "%s", e.what());
+        }
+        CHECK(d.base == 1, "base %d", d.base);
+        CHECK(d.xyz.size() == 3 * 23, "%zu vertices", d.xyz.size() / 3);
+        CHECK(d.tets.size() == 4 * 48, "%zu tets", d.tets.size() / 4);
+        CHECK(d.regions.size() == 48, "%zu regions", d.regions.size());
+        double volume[3] = {0, 0, 0};
+        for (size_t t = 0; t < 48; ++t) {
+            CHECK(d.regions[t] == 1 || d.regions[t] == 2, "tet %zu has region %d", t, d.regions[t]);
+            volume[d.regions[t]] += std::fabs(tet_volume(d, t));
+        }
+        CHECK(std::count(d.regions.begin(), d.regions.end(), 1) == 24, "not 24 tets in region 1");
+        CHECK(std::fabs(volume[1] - 1) < 1e-12 && std::fabs(volume[2] - 1) < 1e-12, "volumes %g and %g", volume[1],
+              volume[2]);
+        CHECK(d.tri_markers == std::vector<int32_t>(8, 10), "%zu markers, expected 8 x 10", d.tri_markers.size());
+        for (int32_t v : d.triangles) CHECK(d.xyz[3 * (v - 1) + 2] == 0.0, "a marked face vertex off z = 0");
+        CHECK(d.feature_edges.size() == 2, "%zu feature edges", d.feature_edges.size() / 2);
+        const double* a = &d.xyz[3 * (d.feature_edges[0] - 1)];
+        const double* b = &d.xyz[3 * (d.feature_edges[1] - 1)];
+        CHECK(a[0] == 0 && a[1] == 0 && b[0] == 0 && b[1] == 0 && a[2] + b[2] == 1 && a[2] * b[2] == 0,
+              "the feature edge is not (0,0,0)-(0,0,1)");
+        CHECK(d.fixed.size() == 1, "%zu fixed vertices", d.fixed.size());
+        const double* o = &d.xyz[3 * (d.fixed[0] - 1)];
+        CHECK(o[0] == 0 && o[1] == 0 && o[2] == 0, "the fixed vertex is not the origin");
+        if (name == names[0]) {
+            first = d;
+        } else {
+            CHECK(d.xyz == first.xyz && d.tets == first.tets && d.regions == first.regions &&
+                      d.triangles == first.triangles && d.feature_edges == first.feature_edges && d.fixed == first.fixed,
+                  "differs from %s", names[0]);
+        }
+    }
+}
+
+// 4.1 ASCII, tags 40, 10, 30, 20, 50 (sparse, unordered), a parametric block,
+// other sections, a quad and an unknown 2-D type skipped.
+const char* kSparse41 =
+    "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+    "$Comments\nanything $Nodes here\n$EndComments\n"
+    "$PhysicalNames\n1\n3 7 \"v $EndPhysicalNames\"\n$EndPhysicalNames\n"
+    "$Entities\n1 0 1 1\n"
+    "4 0 0 0 1 9\n"
+    "3 0 0 0 1 1 1 1 7 2 1 -2\n"
+    "2 0 0 0 1 1 1 2 4 8 1 3\n"
+    "$EndEntities\n"
+    "$Nodes\n3 5 10 50\n"
+    "3 2 0 3\n40\n10\n30\n0 0 0\n1 0 0\n0 1 0\n"
+    "2 3 1 1\n20\n0 0 1 0.5 0.5\n"
+    "0 4 0 1\n50\n1 1 1\n"
+    "$EndNodes\n"
+    "$Elements\n5 6 1 9\n"
+    "0 4 15 1\n1 50\n"
+    "2 3 2 1\n2 40 10 30\n"
+    "2 3 3 1\n3 40 10 30 20\n"
+    "2 3 9999 1\n4 1 2 3 and whatever\n"
+    "3 2 4 2\n5 40 10 30 20\n9 40 10 20 50\n"
+    "$EndElements\n"
+    "$NodeData\n1\n\"x\"\n$EndNodeData\n";
+
+// 2.2 ASCII, tags 7, 3, 5, 1 (unordered), a 6-tag tet and a quad.
+const char* kSparse22 =
+    "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+    "$Nodes\n4\n7 0 0 0\n3 1 0 0\n5 0 1 0\n1 0 0 1\n$EndNodes\n"
+    "$Elements\n4\n"
+    "1 4 6 3 1 2 1 2 3 7 3 5 1\n"
+    "2 2 2 4 1 7 3 5\n"
+    "3 3 2 4 1 7 3 5 1\n"
+    "4 2 2 0 1 7 5 1\n"
+    "$EndElements\n";
+
+void test_sparse_tags(void** /*state*/) {
+    {
+        const char* what = "sparse 4.1";
+        const std::string path = scratch("sparse41.msh");
+        spit(path, kSparse41);
+        MeshData d;
+        try {
+            d = bodt::read_gmsh(path);
+        } catch (const Error& e) {
+            CHECK(false, "%s", e.what());
+        }
+        CHECK(d.base == 0, "base %d", d.base);
+        // file order: 40 10 30 20 50 -> 0 1 2 3 4
+        CHECK(d.xyz == (std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1}), "coordinates");
+        CHECK(d.tets == (std::vector<int32_t>{0, 1, 2, 3, 0, 1, 3, 4}), "tets");
+        CHECK(d.regions == (std::vector<int32_t>{4, 4}), "regions (first physical tag of volume 2)");
+        CHECK(d.triangles == (std::vector<int32_t>{0, 1, 2}) && d.tri_markers == std::vector<int32_t>{7}, "triangle");
+        CHECK(d.fixed == std::vector<int32_t>{4}, "fixed");
+        CHECK(d.feature_edges.empty(), "feature edges");
+    }
+    {
+        const char* what = "sparse 2.2";
+        const std::string path = scratch("sparse22.msh");
+        spit(path, kSparse22);
+        MeshData d;
+        try {
+            d = bodt::read_gmsh(path);
+        } catch (const Error& e) {
+            CHECK(false, "%s", e.what());
+        }
+        CHECK(d.base == 0, "base %d", d.base);
+        CHECK(d.tets == (std::vector<int32_t>{0, 1, 2, 3}) && d.regions == std::vector<int32_t>{3}, "tet");
+        CHECK(d.triangles == (std::vector<int32_t>{0, 1, 2}) && d.tri_markers == std::vector<int32_t>{4},
+              "only the physical triangle");
+    }
+}
+
+// ---------------------------------------------------------------- malformed
+
+// `path` must fail to read with BODT_ERR_IO and a message naming the path and
+// a line ("path:12:") or byte offset ("path: at byte 345:").
+void expect_io_error(const char* what, const std::string& path) {
+    try {
+        bodt::read_gmsh(path);
+    } catch (const Error& e) {
+        const std::string m = e.what();
+        if (std::getenv("BODT_TEST_VERBOSE")) std::printf("%-32s %s\n", what, m.c_str());
+        CHECK(e.status() == BODT_ERR_IO, "status %d (%s)", e.status(), m.c_str());
+        CHECK(m.compare(0, path.size(), path) == 0, "the message does not start with the path: %s", m.c_str());
+        std::string rest = m.substr(std::min(path.size(), m.size()));
+        if (rest.compare(0, 10, ": at byte ") == 0)
+            rest = rest.substr(10);
+        else if (!rest.empty() && rest[0] == ':')
+            rest = rest.substr(1);
+        else
+            rest.clear();
+        const size_t digits = rest.find_first_not_of("0123456789");
+        CHECK(digits > 0 && digits != std::string::npos && rest[digits] == ':',
+              "no line number or byte offset after the path: %s", m.c_str());
+        return;
+    }
+    CHECK(false, "%s was read without an error", path.c_str());
+}
+
+// `text` with the first `from` replaced by `to` (which must be there).
+std::string replaced(const std::string& text, const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    if (at == std::string::npos) fail_msg("'%s' is not in the file", from.c_str());
+    return text.substr(0, at) + to + text.substr(at + from.size());
+}
+
+template <class T>
+std::string patched(std::string text, size_t offset, T value) {
+    if (offset + sizeof value > text.size()) fail_msg("patch beyond the end");
+    std::memcpy(&text[offset], &value, sizeof value);
+    return text;
+}
+
+void test_malformed(void** /*state*/) {
+    const std::string a41 = slurp(data("box41.msh")), b41 = slurp(data("box41_bin.msh"));
+    const std::string a22 = slurp(data("box22.msh")), b22 = slurp(data("box22_bin.msh"));
+    struct Case {
+        std::string name, content;
+    };
+    std::vector<Case> cases;
+    auto add = [&](const std::string& name, const std::string& content) { cases.push_back({name, content}); };
+
+    // truncations at many points of each file (every one must fail: the
+    // last section is $Elements, and a cut inside it loses $EndElements)
+    const std::pair<const char*, const std::string*> files[] = {
+        {"a41", &a41}, {"b41", &b41}, {"a22", &a22}, {"b22", &b22}};
+    for (const auto& [name, text] : files) {
+        const size_t n = text->size();
+        const size_t cuts[] = {0, 5, 20, n / 8, n / 4, n / 3, n / 2, 2 * n / 3, 3 * n / 4, 7 * n / 8, n - 30, n - 14, n - 2};
+        for (size_t cut : cuts) add(std::string("cut_") + name + "_" + std::to_string(cut), text->substr(0, cut));
+        // cut just inside the binary nodes and elements
+        const size_t nodes = text->find("$Nodes\n"), elements = text->find("$Elements\n");
+        for (size_t extra : {10, 15, 40, 61})
+            add(std::string("cut_nodes_") + name + "_" + std::to_string(extra), text->substr(0, nodes + extra));
+        for (size_t extra : {12, 19, 45, 70})
+            add(std::string("cut_elements_") + name + "_" + std::to_string(extra), text->substr(0, elements + extra));
+    }
+    // versions, file type, data size
+    add("version_40", replaced(a41, "4.1 0 8", "4.0 0 8"));
+    add("version_30", replaced(a41, "4.1 0 8", "3 0 8"));
+    add("version_garbage", replaced(a22, "2.2 0 8", "x 0 8"));
+    add("file_type_2", replaced(a41, "4.1 0 8", "4.1 2 8"));
+    add("data_size_4", replaced(a22, "2.2 0 8", "2.2 0 4"));
+    // counts
+    add("nodes_count_huge", replaced(a41, "$Nodes\n26 23 1 23", "$Nodes\n26 2300000000000 1 23"));
+    add("nodes_count_negative", replaced(a41, "$Nodes\n26 23 1 23", "$Nodes\n26 -23 1 23"));
+    add("nodes_count_small", replaced(a41, "$Nodes\n26 23 1 23", "$Nodes\n26 22 1 23"));
+    add("nodes_count_large", replaced(a41, "$Nodes\n26 23 1 23", "$Nodes\n26 24 1 23"));
+    add("node_blocks_negative", replaced(a41, "$Nodes\n26 23 1 23", "$Nodes\n-26 23 1 23"));
+    add("elements_count_huge", replaced(a41, "$Elements\n6 58 1 58", "$Elements\n6 9999999999 1 58"));
+    add("elements_count_wrong", replaced(a41, "$Elements\n6 58 1 58", "$Elements\n6 57 1 58"));
+    add("nodes22_count_huge", replaced(a22, "$Nodes\n23\n", "$Nodes\n230000000\n"));
+    add("nodes22_count_negative", replaced(a22, "$Nodes\n23\n", "$Nodes\n-1\n"));
+    add("elements22_count_large", replaced(a22, "$Elements\n58\n", "$Elements\n59\n"));
+    add("elements22_count_negative", replaced(a22, "$Elements\n58\n", "$Elements\n-58\n"));
+    add("entities_count_huge", replaced(a41, "$Entities\n12 20 11 2", "$Entities\n12 20 1100000 2"));
+    // tags and coordinates
+    add("node_tag_outside_header", replaced(a41, "\n0 1 0 1\n1\n", "\n0 1 0 1\n24\n"));
+    add("node_tag_duplicate22", replaced(a22, "\n2 0 0 0\n", "\n1 0 0 0\n"));
+    add("element_node_out_of_range41", replaced(a41, "\n3 1 4 24\n11 ", "\n3 1 4 24\n11 99 "));
+    add("element_node_out_of_range22", replaced(a22, "\n2 1 2 20 1 2 1\n", "\n2 1 2 20 1 2 1000\n"));
+    add("element_node_zero22", replaced(a22, "\n2 1 2 20 1 2 1\n", "\n2 1 2 20 1 0 1\n"));
+    add("nan_coordinate41", replaced(a41, "\n0 0 1\n", "\nnan 0 1\n"));
+    add("inf_coordinate22", replaced(a22, "\n1 0 0 1\n", "\n1 0 inf 1\n"));
+    add("garbage_coordinate22", replaced(a22, "\n1 0 0 1\n", "\n1 0 0x 1\n"));
+    // sections
+    add("missing_end_nodes41", replaced(a41, "$EndNodes\n", ""));
+    add("missing_end_nodes22", replaced(a22, "$EndNodes\n", ""));
+    add("missing_end_elements", replaced(a41, "$EndElements\n", ""));
+    add("missing_end_physical_names", replaced(a41, "$EndPhysicalNames\n", ""));
+    add("missing_nodes", a41.substr(0, a41.find("$Nodes")));
+    add("elements_before_nodes", replaced(a22, "$Nodes", "$Elements\n0\n$EndElements\n$Nodes"));
+    add("not_gmsh", "MeshVersionFormatted 2\nDimension 3\n");
+    add("binary_garbage", std::string("\x00\x01\xff\xfe$Nodes\n", 11));
+    add("empty", "");
+    add("stray_token", replaced(a41, "$Elements", "hello\n$Elements"));
+    add("no_tets", a22.substr(0, a22.find("$Elements")) + "$Elements\n1\n1 15 2 30 2 2\n$EndElements\n");
+    // element types
+    add("second_order_tet41", replaced(a41, "\n3 1 4 24\n", "\n3 1 11 24\n"));
+    add("hex41", replaced(a41, "\n3 1 4 24\n", "\n3 1 5 24\n"));
+    add("tet_in_surface41", replaced(a41, "\n3 1 4 24\n", "\n2 1 4 24\n"));
+    add("unknown_volume_type41", replaced(a41, "\n3 1 4 24\n", "\n3 1 200 24\n"));
+    add("unknown_type22", replaced(a22, "\n1 15 2 30", "\n1 99 2 30"));
+    add("second_order_tet22", replaced(a22, " 4 2 1 ", " 11 2 1 "));
+    add("element_tags_huge22", replaced(a22, " 4 2 1 ", " 4 200000 1 "));
+
+    // binary files: patch values at known offsets
+    {
+        const size_t one = b41.find("4.1 1 8\n") + 8;
+        add("b41_endianness", patched<uint32_t>(b41, one, 0x01000000u));
+        add("b41_endianness_garbage", patched<uint32_t>(b41, one, 7u));
+        const size_t nodes = b41.find("$Nodes\n") + 7;
+        add("b41_nodes_count_huge", patched<uint64_t>(b41, nodes + 8, uint64_t{1} << 50));
+        add("b41_nodes_count_size_t_max", patched<uint64_t>(b41, nodes + 8, ~uint64_t{0}));
+        add("b41_node_blocks_huge", patched<uint64_t>(b41, nodes, uint64_t{1} << 40));
+        add("b41_node_block_dim", patched<int32_t>(b41, nodes + 32, 7));
+        add("b41_node_block_count_huge", patched<uint64_t>(b41, nodes + 44, uint64_t{1} << 33));
+        add("b41_node_tag_zero", patched<uint64_t>(b41, nodes + 52, 0));
+        add("b41_nan", patched<double>(b41, nodes + 60, std::nan("")));
+        const size_t elements = b41.find("$Elements\n") + 10;
+        add("b41_elements_count_huge", patched<uint64_t>(b41, elements + 8, uint64_t{1} << 60));
+        add("b41_element_type", patched<int32_t>(b41, elements + 40, 1234));
+        add("b41_element_block_huge", patched<uint64_t>(b41, elements + 44, uint64_t{1} << 45));
+        add("b41_element_node_out_of_range", patched<uint64_t>(b41, elements + 60, 1000));
+        const size_t entities = b41.find("$Entities\n") + 10;
+        add("b41_entities_count_huge", patched<uint64_t>(b41, entities, uint64_t{1} << 40));
+        add("b41_missing_end", b41.substr(0, b41.rfind("$EndElements")));
+
+        const size_t one22 = b22.find("2.2 1 8\n") + 8;
+        add("b22_endianness", patched<uint32_t>(b22, one22, 0x01000000u));
+        const size_t nodes22 = b22.find("$Nodes\n23\n") + 10;
+        add("b22_node_tag_negative", patched<int32_t>(b22, nodes22, -5));
+        add("b22_inf", patched<double>(b22, nodes22 + 4 + 16, HUGE_VAL));
+        add("b22_nodes_count_large", replaced(b22, "$Nodes\n23\n", "$Nodes\n24\n"));
+        const size_t el22 = b22.find("$Elements\n58\n") + 13;
+        add("b22_follow_zero", patched<int32_t>(b22, el22 + 4, 0));
+        add("b22_follow_too_many", patched<int32_t>(b22, el22 + 4, 59));
+        add("b22_ntags_negative", patched<int32_t>(b22, el22 + 8, -1));
+        add("b22_ntags_huge", patched<int32_t>(b22, el22 + 8, 1 << 30));
+        add("b22_type_unknown", patched<int32_t>(b22, el22, 77));
+        add("b22_element_node_out_of_range", patched<int32_t>(b22, el22 + 12 + 12, 24));
+        add("b22_elements_count_large", replaced(b22, "$Elements\n58\n", "$Elements\n60\n"));
+    }
+
+    for (const Case& c : cases) {
+        const std::string path = scratch("bad_" + c.name + ".msh");
+        spit(path, c.content);
+        expect_io_error(c.name.c_str(), path);
+    }
+    const char* what = "malformed";
+    CHECK(cases.size() >= 15, "only %zu cases", cases.size());
+    std::printf("malformed: %zu corrupted files refused\n", cases.size());
+
+    // a missing file
+    try {
+        bodt::read_gmsh(scratch("no_such_file.msh"));
+        CHECK(false, "a missing file was read");
+    } catch (const Error& e) {
+        CHECK(e.status() == BODT_ERR_IO && std::strstr(e.what(), "no_such_file.msh"), "%s", e.what());
+    }
+}
+
+void test_bad_write(void** /*state*/) {
+    const char* what = "bad write";
+    const MeshData d = make_mesh(0);
+    for (int version : {0, 2, 4, 40, 23}) {
+        try {
+            bodt::write_gmsh(scratch("bad_version.msh"), d, version, false);
+            CHECK(false, "version %d accepted", version);
+        } catch (const Error& e) {
+            CHECK(e.status() == BODT_ERR_INVALID_ARGUMENT, "status %d", e.status());
+        }
+    }
+    MeshData bad = d;
+    bad.tets[5] = 27;
+    try {
+        bodt::write_gmsh(scratch("bad_index.msh"), bad, 41, false);
+        CHECK(false, "an out-of-range tet vertex accepted");
+    } catch (const Error& e) {
+        CHECK(e.status() == BODT_ERR_INVALID_ARGUMENT, "status %d", e.status());
+    }
+    try {
+        bodt::write_gmsh(g_scratch + "/no/such/dir/x.msh", d, 41, false);
+        CHECK(false, "writing into a missing directory succeeded");
+    } catch (const Error& e) {
+        CHECK(e.status() == BODT_ERR_IO, "status %d", e.status());
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 3) {
+        std::fprintf(stderr, "usage: %s <tests/data dir> <scratch dir>\n", argv[0]);
+        return 2;
+    }
+    g_data = argv[1];
+    g_scratch = argv[2];
+    mkdir(g_scratch.c_str(), 0755);
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_round_trip), cmocka_unit_test(test_gmsh_files), cmocka_unit_test(test_sparse_tags),
+        cmocka_unit_test(test_malformed), cmocka_unit_test(test_bad_write),
+    };
+    return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
