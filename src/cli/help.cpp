@@ -35,7 +35,7 @@ const char* const kFiles =
     "  .inp    Abaqus / CalculiX (abaqus), written only: C3D4 elements, an\n"
     "          element set per region, a node set of the fixed vertices, a\n"
     "          surface per face marker.\n"
-    "  .off, .stl, .ply, .poly\n"
+    "  .off, .obj, .stl, .ply, .poly\n"
     "          When bodt is built with TetGen, an input may be a closed surface\n"
     "          or a PLC: it is first tetrahedralized like `tetgen -p`.\n"
     "  A TetGen mesh whose tets are all negatively oriented is read as such;\n"

@@ -5,6 +5,12 @@
 #ifdef BODT_WITH_TETGEN
 #include "cli/silenced_stdout.hpp"
 
+// OpenMesh 9's property code trips GCC 12's -Wmaybe-uninitialized.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#pragma GCC diagnostic pop
 #include <tetgen.h>
 #endif
 
@@ -21,35 +27,64 @@ std::string extension(const std::string& path) {
 
 bool is_surface_path(const std::string& path) {
     const std::string ext = extension(path);
-    return ext == ".off" || ext == ".stl" || ext == ".ply" || ext == ".poly";
+    return ext == ".off" || ext == ".obj" || ext == ".stl" || ext == ".ply" || ext == ".poly";
 }
 
 #ifdef BODT_WITH_TETGEN
 
 namespace {
 
-bool load_surface(tetgenio& in, const std::string& ext, char* name) {
+using SurfaceMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+// A closed triangle surface read by OpenMesh (.off, .obj, .stl, .ply; polygons
+// are triangulated) as TetGen's PLC: its points and one triangle per facet.
+// Returns "" or what is wrong.
+std::string load_with_openmesh(tetgenio& in, const std::string& path) {
+    SurfaceMesh surface;
+    OpenMesh::IO::Options options;
+    if (!OpenMesh::IO::read_mesh(surface, path, options)) return "cannot read the surface '" + path + "'";
+    if (surface.n_faces() == 0) return "'" + path + "' has no faces";
+    for (const auto h : surface.halfedges())
+        if (surface.is_boundary(h)) return "'" + path + "' is not a closed surface (it has boundary edges)";
+    in.firstnumber = 0;
+    in.numberofpoints = static_cast<int>(surface.n_vertices());
+    in.pointlist = new REAL[3 * surface.n_vertices()];
+    for (const auto v : surface.vertices())
+        for (int k = 0; k < 3; ++k) in.pointlist[3 * v.idx() + k] = surface.point(v)[k];
+    in.numberoffacets = static_cast<int>(surface.n_faces());
+    in.facetlist = new tetgenio::facet[surface.n_faces()];
+    for (const auto f : surface.faces()) {
+        tetgenio::facet& facet = in.facetlist[f.idx()];
+        tetgenio::init(&facet);
+        facet.numberofpolygons = 1;
+        facet.polygonlist = new tetgenio::polygon[1];
+        tetgenio::init(&facet.polygonlist[0]);
+        facet.polygonlist[0].numberofvertices = 3;
+        facet.polygonlist[0].vertexlist = new int[3];
+        int k = 0;
+        for (const auto v : surface.fv_range(f)) facet.polygonlist[0].vertexlist[k++] = v.idx();
+    }
+    return "";
+}
+
+// Loads the surface or PLC at `path` into `in`; returns "" or what is wrong.
+std::string load_surface(tetgenio& in, const std::string& path, const std::string& ext) {
+    if (ext != ".poly") return load_with_openmesh(in, path);
+    // TetGen's loader takes a writable name without the extension.
+    std::string name = path.substr(0, path.size() - 5);
+    std::vector<char> buffer(name.begin(), name.end());
+    buffer.push_back('\0');
     const SilencedStdout quiet;
-    if (ext == ".off") return in.load_off(name);
-    if (ext == ".stl") return in.load_stl(name);
-    if (ext == ".ply") return in.load_ply(name);
-    return in.load_poly(name);
+    return in.load_poly(buffer.data()) ? "" : "TetGen could not read the PLC '" + path + "'";
 }
 
 }  // namespace
 
 int tetrahedralize_surface(const std::string& path, bodt_mesh** mesh, std::string& message) {
     *mesh = nullptr;
-    const std::string ext = extension(path);
-    // TetGen's loaders take a writable name; .poly is given without its extension.
-    std::string name = ext == ".poly" ? path.substr(0, path.size() - 5) : path;
-    std::vector<char> buffer(name.begin(), name.end());
-    buffer.push_back('\0');
     tetgenio in, out;
-    if (!load_surface(in, ext, buffer.data())) {
-        message = "TetGen could not read the surface '" + path + "'";
-        return BODT_ERR_IO;
-    }
+    message = load_surface(in, path, extension(path));
+    if (!message.empty()) return BODT_ERR_IO;
     tetgenbehavior behavior;
     char switches[] = "pQ";  // PLC, quiet; numbering follows out.firstnumber
     if (!behavior.parse_commandline(switches)) {

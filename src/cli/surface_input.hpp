@@ -1,6 +1,6 @@
-// Surface input for the command-line tool: a closed triangle surface (.off,
-// .stl, .ply) or a TetGen PLC (.poly) is tetrahedralized by TetGen like
-// `tetgen -p` (constrained Delaunay, no quality refinement).
+// Surface input for the command-line tool: a closed surface (.off, .obj,
+// .stl, .ply, read by OpenMesh) or a TetGen PLC (.poly) is tetrahedralized by
+// TetGen like `tetgen -p` (constrained Delaunay, no quality refinement).
 #pragma once
 
 #include "bodt.h"

@@ -630,6 +630,21 @@ def case_improve_surface(args):
         f.write("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n")
     code, out, err = run(args.bodt, "quality", bad)
     check(code == 2, "an open surface: exit %d, expected 2" % code)
+    check("not a closed surface" in err, "the open surface's message: %r" % err)
+    # the same octahedron as Wavefront OBJ (read by OpenMesh)
+    lines = open(src).read().split("\n")
+    verts = [l for l in lines[2:8]]
+    faces = [[int(i) + 1 for i in l.split()[1:]] for l in lines[8:16]]
+    obj = os.path.join(args.out, "octahedron.obj")
+    with open(obj, "w") as f:
+        f.writelines("v %s\n" % v for v in verts)
+        f.writelines("f %d %d %d\n" % tuple(face) for face in faces)
+    code, out, err = run(args.bodt, "improve", obj, dst)
+    check(code == 0, "bodt improve %s exited %d: %s" % (obj, code, err))
+    q = quality_json(args, dst)
+    if q is not None:
+        check(abs(q["volume"] - 4.0 / 3.0) <= 1e-12, "OBJ: volume %r, expected 4/3" % q["volume"])
+        check(q["inverted"] == 0, "OBJ: inverted %r" % q["inverted"])
 
 
 def case_surface_without_tetgen(args):
