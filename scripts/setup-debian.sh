@@ -19,6 +19,8 @@ packages=(
   python3-cffi      # the test that loads the installed bodt.h with cffi
   abigail-tools     # abidiff: the ABI check against tests/consumers/libbodt.abi
   chromium          # renders the HTML report headless in its test (screenshot)
+  clang             # clang++ for the libFuzzer targets of the readers (tests/fuzz)
+  libclang-rt-14-dev # libFuzzer and the sanitizer runtimes for clang 14
 )
 
 if ! command -v dpkg-query >/dev/null 2>&1; then
