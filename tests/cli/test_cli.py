@@ -39,13 +39,13 @@ def run(bodt, *args):
 
 # ------------------------------------------------------------ independent geometry
 
-def read_medit(path):
-    """Vertices (list of 3-tuples) and tets (0-based 4-tuples) of a Medit file."""
+def read_medit_full(path):
+    """Vertices, 0-based tets, tet refs and [(0-based triangle, ref)] of a Medit file."""
     tokens = []
     with open(path) as f:
         for line in f:
             tokens += line.split("#", 1)[0].split()
-    pts, tets, k = [], [], 0
+    pts, tets, refs, tris, k = [], [], [], [], 0
     while k < len(tokens):
         t = tokens[k]
         k += 1
@@ -56,13 +56,21 @@ def read_medit(path):
         elif t == "Tetrahedra":
             n = int(tokens[k]); k += 1
             for _ in range(n):
-                tets.append(tuple(int(x) - 1 for x in tokens[k:k + 4])); k += 5
+                tets.append(tuple(int(x) - 1 for x in tokens[k:k + 4])); refs.append(int(tokens[k + 4])); k += 5
         elif t == "Triangles":
-            n = int(tokens[k]); k += 1 + 4 * n
-        elif t == "RequiredVertices" or t == "Corners":
+            n = int(tokens[k]); k += 1
+            for _ in range(n):
+                tris.append((tuple(int(x) - 1 for x in tokens[k:k + 3]), int(tokens[k + 3]))); k += 4
+        elif t in ("RequiredVertices", "Corners"):
             n = int(tokens[k]); k += 1 + n
-        elif t == "Dimension" or t == "MeshVersionFormatted":
+        elif t in ("Dimension", "MeshVersionFormatted"):
             k += 1
+    return pts, tets, refs, tris
+
+
+def read_medit(path):
+    """Vertices (list of 3-tuples) and tets (0-based 4-tuples) of a Medit file."""
+    pts, tets, _, _ = read_medit_full(path)
     return pts, tets
 
 
@@ -225,17 +233,7 @@ def case_improve(args):
 def read_medit_triangles(path):
     """The Triangles of a Medit file as a sorted list of (sorted 0-based
     vertex triple, ref)."""
-    tokens = []
-    with open(path) as f:
-        for line in f:
-            tokens += line.split("#", 1)[0].split()
-    k = tokens.index("Triangles") + 1 if "Triangles" in tokens else len(tokens)
-    out = []
-    if k < len(tokens):
-        n = int(tokens[k]); k += 1
-        for _ in range(n):
-            out.append((tuple(sorted(int(x) - 1 for x in tokens[k:k + 3])), int(tokens[k + 3]))); k += 4
-    return sorted(out)
+    return sorted((tuple(sorted(tri)), ref) for tri, ref in read_medit_full(path)[3])
 
 
 SUMMARY = re.compile(r"^(\d+) steps: (\d+) flips, (\d+) vertices inserted, (\d+) edges collapsed$", re.M)
@@ -655,35 +653,6 @@ def case_surface_without_tetgen(args):
 
 
 # --------------------------------------------------- compare, convert, report
-
-def read_medit_full(path):
-    """Vertices, 0-based tets, tet refs and [(0-based triangle, ref)] of a Medit file."""
-    tokens = []
-    with open(path) as f:
-        for line in f:
-            tokens += line.split("#", 1)[0].split()
-    pts, tets, refs, tris, k = [], [], [], [], 0
-    while k < len(tokens):
-        t = tokens[k]
-        k += 1
-        if t == "Vertices":
-            n = int(tokens[k]); k += 1
-            for _ in range(n):
-                pts.append(tuple(float(x) for x in tokens[k:k + 3])); k += 4
-        elif t == "Tetrahedra":
-            n = int(tokens[k]); k += 1
-            for _ in range(n):
-                tets.append(tuple(int(x) - 1 for x in tokens[k:k + 4])); refs.append(int(tokens[k + 4])); k += 5
-        elif t == "Triangles":
-            n = int(tokens[k]); k += 1
-            for _ in range(n):
-                tris.append((tuple(int(x) - 1 for x in tokens[k:k + 3]), int(tokens[k + 3]))); k += 4
-        elif t in ("RequiredVertices", "Corners"):
-            n = int(tokens[k]); k += 1 + n
-        elif t in ("Dimension", "MeshVersionFormatted"):
-            k += 1
-    return pts, tets, refs, tris
-
 
 def side_marker(pts, tri, size=2.0):
     """1..6 for the box sides x=0, x=size, y=0, y=size, z=0, z=size."""
