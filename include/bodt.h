@@ -158,6 +158,32 @@ BODT_API int bodt_mesh_set_fixed_vertices(bodt_mesh *mesh, int32_t nfixed,
  */
 BODT_API int bodt_mesh_set_feature_edges(bodt_mesh *mesh, int32_t nedges,
                                          const int32_t *edges);
+/*
+ * bodt_mesh_set_feature_edges() with a reference number per edge (Medit's
+ * edge ref, Gmsh's physical curve tag); refs may be NULL (every ref 0).
+ * An operation that splits a feature edge gives both halves its ref.
+ */
+BODT_API int bodt_mesh_set_feature_edges_ex(bodt_mesh *mesh, int32_t nedges,
+                                            const int32_t *edges,
+                                            const int32_t *refs);
+
+/*
+ * Corners the caller knows (Medit's Corners, CAD vertices): vertices where
+ * feature lines end.  They do not move in any mode and are classified
+ * BODT_VERTEX_CORNER.  Replaces an earlier list.
+ */
+BODT_API int bodt_mesh_set_corners(bodt_mesh *mesh, int32_t ncorners,
+                                   const int32_t *vertices);
+
+/*
+ * One reference number per vertex (Medit's vertex ref, TetGen's boundary
+ * marker), for the caller's boundary conditions; default 0.  The modes do
+ * not read them.  A vertex made by an operation takes the ref shared by
+ * those of its parents (bodt_mesh_get_vertex_parents) that lie where it
+ * lies, on the surface or inside; 0 when they differ or there are none.
+ * Set them before a step makes vertices (BODT_ERR_WRONG_STATE after).
+ */
+BODT_API int bodt_mesh_set_vertex_refs(bodt_mesh *mesh, const int32_t *refs);
 
 /* ---------------------------------------------------------------- getters */
 
@@ -198,6 +224,18 @@ BODT_API int bodt_mesh_get_fixed_vertices(const bodt_mesh *mesh,
 BODT_API int bodt_mesh_get_feature_edges(const bodt_mesh *mesh,
                                          int32_t *nedges, int32_t *edges,
                                          size_t capacity);
+/* bodt_mesh_get_feature_edges() with their refs (refs may be NULL). */
+BODT_API int bodt_mesh_get_feature_edges_ex(const bodt_mesh *mesh,
+                                            int32_t *nedges, int32_t *edges,
+                                            int32_t *refs, size_t capacity);
+/* nverts flags: 1 where the caller made the vertex a corner, else 0. */
+BODT_API int bodt_mesh_get_corners(const bodt_mesh *mesh, int32_t *is_corner,
+                                   size_t capacity);
+/* nverts vertex refs (see bodt_mesh_set_vertex_refs). */
+BODT_API int bodt_mesh_get_vertex_refs(const bodt_mesh *mesh, int32_t *refs,
+                                       size_t capacity);
+/* The index base (0 or 1) of every index this handle takes and gives. */
+BODT_API int bodt_mesh_get_index_base(const bodt_mesh *mesh, int *index_base);
 
 /* How the current mode treats each vertex (bodt_mesh_get_vertex_classes). */
 enum bodt_vertex_class {
@@ -211,7 +249,8 @@ enum bodt_vertex_class {
 };
 /* nverts classes (enum bodt_vertex_class).  Feature lines and corners are
  * found in BODT_MODE_BODT only; the other modes see every boundary and
- * interface vertex as BODT_VERTEX_SURFACE. */
+ * interface vertex as BODT_VERTEX_SURFACE.  The caller's corners are
+ * BODT_VERTEX_CORNER in every mode. */
 BODT_API int bodt_mesh_get_vertex_classes(const bodt_mesh *mesh,
                                           int32_t *classes, size_t capacity);
 
@@ -612,29 +651,35 @@ BODT_API int bodt_mesh_recovery_error(const bodt_mesh *mesh,
 /* File formats (bodt_mesh_read_format, bodt_mesh_write_format). */
 enum bodt_format {
     BODT_FORMAT_AUTO = 0,           /* by the extension, as below              */
-    /* .mesh, Medit ASCII: Vertices, Tetrahedra (ref = region id), Triangles
-     * (ref = face marker), Corners and RequiredVertices (fixed vertices),
-     * Edges + Ridges (feature edges); other known sections are skipped. */
+    /* .mesh, Medit ASCII: Vertices (ref = vertex ref), Tetrahedra (ref =
+     * region id), Triangles (ref = face marker), Edges (feature edges with
+     * their refs; written with Ridges naming them all), Corners (corners),
+     * RequiredVertices (fixed vertices); other known sections are skipped. */
     BODT_FORMAT_MEDIT = 1,
     BODT_FORMAT_MEDIT_BINARY = 2,   /* .meshb, the same sections in binary    */
     /* .node / .ele (give either; the other and an optional .face with
      * markers are found beside it; a write makes all three).  0- and
-     * 1-based files.  No fixed vertices. */
+     * 1-based files; the .node boundary markers are the vertex refs.  No
+     * fixed vertices, corners or feature edges. */
     BODT_FORMAT_TETGEN = 3,
     /* .msh, Gmsh: reads 2.2 and 4.1, ASCII and binary; physical tags of
-     * volumes are region ids, of surfaces face markers.  Writes 4.1 ASCII;
-     * the next three write the other variants. */
+     * volumes are region ids, of surfaces face markers, of curves feature
+     * edge refs (line elements are feature edges), of points fixed
+     * vertices.  No vertex refs or corners.  Writes 4.1 ASCII; the next
+     * three write the other variants. */
     BODT_FORMAT_GMSH = 4,
     BODT_FORMAT_GMSH_BINARY = 5,    /* writes 4.1 binary                      */
     BODT_FORMAT_GMSH22 = 6,         /* writes 2.2 ASCII                       */
     BODT_FORMAT_GMSH22_BINARY = 7,  /* writes 2.2 binary                      */
-    /* .vtu, VTK XML unstructured grid (ParaView): a write adds per-tet
-     * region, minimum and maximum dihedral angle, stretch and volume as
-     * cell data. */
+    /* .vtu, VTK XML unstructured grid (ParaView): tets (cell data
+     * "region"), marked faces as triangle cells and feature edges as line
+     * cells (cell data "marker": face marker, edge ref); point data "ref",
+     * "fixed" and "corner".  A write adds per-tet minimum and maximum
+     * dihedral angle, stretch and volume as cell data. */
     BODT_FORMAT_VTU = 8,
     /* .inp, Abaqus / CalculiX (write only): C3D4 elements, an element set
-     * per region, a node set of the fixed vertices, an element surface per
-     * face marker. */
+     * per region, a node set of the fixed vertices and one per non-zero
+     * vertex ref, an element surface per face marker. */
     BODT_FORMAT_ABAQUS = 9
 };
 

@@ -108,7 +108,9 @@ static int points_away(const double *xyz, const int32_t *tri, int32_t inside) {
 typedef struct snapshot {
     int32_t nv, nt, nbf;
     double *xyz;
-    int32_t *tets, *regions, *tris, *markers, *fixed;
+    int32_t *tets, *regions, *tris, *markers, *fixed, *corners, *refs;
+    int32_t nedges;
+    int32_t *edges, *edge_refs;
 } snapshot;
 
 static void take_snapshot(const bodt_mesh *h, snapshot *s) {
@@ -119,15 +121,25 @@ static void take_snapshot(const bodt_mesh *h, snapshot *s) {
     s->tris = malloc(3 * (size_t)s->nbf * sizeof(int32_t) + 1);
     s->markers = malloc((size_t)s->nbf * sizeof(int32_t) + 1);
     s->fixed = malloc((size_t)s->nv * sizeof(int32_t));
+    s->corners = malloc((size_t)s->nv * sizeof(int32_t));
+    s->refs = malloc((size_t)s->nv * sizeof(int32_t));
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(h, &s->nedges, NULL, NULL, 0), BODT_OK);
+    s->edges = malloc(2 * (size_t)s->nedges * sizeof(int32_t) + 1);
+    s->edge_refs = malloc((size_t)s->nedges * sizeof(int32_t) + 1);
     assert_int_equal(bodt_mesh_get_vertices(h, s->xyz, 3 * (size_t)s->nv), BODT_OK);
     assert_int_equal(bodt_mesh_get_tets(h, s->tets, 4 * (size_t)s->nt), BODT_OK);
     assert_int_equal(bodt_mesh_get_regions(h, s->regions, (size_t)s->nt), BODT_OK);
     assert_int_equal(bodt_mesh_get_boundary_faces(h, s->tris, s->markers, (size_t)s->nbf), BODT_OK);
     assert_int_equal(bodt_mesh_get_fixed_vertices(h, s->fixed, (size_t)s->nv), BODT_OK);
+    assert_int_equal(bodt_mesh_get_corners(h, s->corners, (size_t)s->nv), BODT_OK);
+    assert_int_equal(bodt_mesh_get_vertex_refs(h, s->refs, (size_t)s->nv), BODT_OK);
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(h, &s->nedges, s->edges, s->edge_refs, (size_t)s->nedges),
+                     BODT_OK);
 }
 
 static void free_snapshot(snapshot *s) {
     free(s->xyz), free(s->tets), free(s->regions), free(s->tris), free(s->markers), free(s->fixed);
+    free(s->corners), free(s->refs), free(s->edges), free(s->edge_refs);
 }
 
 static void assert_same_snapshot(const snapshot *a, const snapshot *b) {
@@ -142,6 +154,13 @@ static void assert_same_snapshot(const snapshot *a, const snapshot *b) {
         assert_memory_equal(a->markers, b->markers, (size_t)a->nbf * sizeof(int32_t));
     }
     assert_memory_equal(a->fixed, b->fixed, (size_t)a->nv * sizeof(int32_t));
+    assert_memory_equal(a->corners, b->corners, (size_t)a->nv * sizeof(int32_t));
+    assert_memory_equal(a->refs, b->refs, (size_t)a->nv * sizeof(int32_t));
+    assert_int_equal(a->nedges, b->nedges);
+    if (a->nedges) {
+        assert_memory_equal(a->edges, b->edges, 2 * (size_t)a->nedges * sizeof(int32_t));
+        assert_memory_equal(a->edge_refs, b->edge_refs, (size_t)a->nedges * sizeof(int32_t));
+    }
 }
 
 /* ------------------------------------------------------ version and status */
@@ -513,6 +532,130 @@ static void test_fixed_vertices(void **state) {
     for (int32_t v = 0; v < m.nverts; ++v) assert_int_equal(flags[v], 0);
     free(flags);
     free(t1);
+    bodt_mesh_destroy(h);
+    tm_free(&m);
+}
+
+/* Corners, vertex refs, feature edges with refs and the index base, as set
+ * and got; what steps do with them is checked in test_ops. */
+static void test_corners_refs_and_base(void **state) {
+    (void)state;
+    test_mesh m;
+    assert_int_equal(tm_make_box(&m, 3, 0.1, 8), 0);
+    int32_t *t1 = tets_in_base(&m, 1);
+    bodt_mesh *h1 = create_ok(&m, t1, 1), *h0 = create_ok(&m, m.tets, 0);
+    int base = -1;
+    assert_int_equal(bodt_mesh_get_index_base(h1, &base), BODT_OK);
+    assert_int_equal(base, 1);
+    assert_int_equal(bodt_mesh_get_index_base(h0, &base), BODT_OK);
+    assert_int_equal(base, 0);
+    const size_t nv = (size_t)m.nverts;
+    int32_t *flags = malloc(nv * sizeof *flags), *cls = malloc(nv * sizeof *cls), *refs = malloc(nv * sizeof *refs);
+
+    /* corners: the listed vertices only, replacing the earlier list; class
+     * CORNER in every mode, also inside and for a fixed vertex */
+    const int32_t corners[3] = {1, 22, m.nverts}, fixed[1] = {22};
+    assert_int_equal(bodt_mesh_set_corners(h1, 3, corners), BODT_OK);
+    assert_int_equal(bodt_mesh_set_fixed_vertices(h1, 1, fixed), BODT_OK);
+    assert_int_equal(bodt_mesh_get_corners(h1, flags, nv), BODT_OK);
+    for (int32_t v = 0; v < m.nverts; ++v) assert_int_equal(flags[v], v == 0 || v == 21 || v == m.nverts - 1);
+    const int modes[] = {BODT_MODE_BODT, BODT_MODE_ODT, BODT_MODE_LAPLACE, BODT_MODE_OPT_WEIGHTED, BODT_MODE_PHASED_ODT, BODT_MODE_BODT_BASIC};
+    for (size_t k = 0; k < sizeof modes / sizeof *modes; ++k) {
+        assert_int_equal(bodt_set_mode(h1, modes[k]), BODT_OK);
+        assert_int_equal(bodt_mesh_get_vertex_classes(h1, cls, nv), BODT_OK);
+        for (int32_t v = 0; v < m.nverts; ++v)
+            if (flags[v] && cls[v] != BODT_VERTEX_CORNER) fail_msg("mode %d: corner %d has class %d", modes[k], v, cls[v]);
+    }
+    const int32_t other[1] = {5};
+    assert_int_equal(bodt_mesh_set_corners(h1, 1, other), BODT_OK);
+    assert_int_equal(bodt_mesh_get_corners(h1, flags, nv), BODT_OK);
+    for (int32_t v = 0; v < m.nverts; ++v) assert_int_equal(flags[v], v == 4);
+    assert_int_equal(bodt_mesh_get_fixed_vertices(h1, flags, nv), BODT_OK); /* fixed ones are their own list */
+    for (int32_t v = 0; v < m.nverts; ++v) assert_int_equal(flags[v], v == 21);
+
+    /* vertex refs: 0 by default, then as given */
+    assert_int_equal(bodt_mesh_get_vertex_refs(h1, refs, nv), BODT_OK);
+    for (int32_t v = 0; v < m.nverts; ++v) assert_int_equal(refs[v], 0);
+    for (int32_t v = 0; v < m.nverts; ++v) flags[v] = v % 7 - 3;
+    assert_int_equal(bodt_mesh_set_vertex_refs(h1, flags), BODT_OK);
+    assert_int_equal(bodt_mesh_get_vertex_refs(h1, refs, nv), BODT_OK);
+    assert_memory_equal(refs, flags, nv * sizeof *refs);
+
+    /* feature edges: refs kept and sorted with their edges (base 1); the
+     * plain getter gives the same edges, the plain setter refs 0 */
+    int32_t nb = 0;
+    assert_int_equal(bodt_mesh_get_counts(h1, NULL, NULL, &nb), BODT_OK);
+    int32_t *tris = malloc(3 * (size_t)nb * sizeof *tris);
+    assert_int_equal(bodt_mesh_get_boundary_faces(h1, tris, NULL, (size_t)nb), BODT_OK);
+    const int32_t a = tris[0], b = tris[1], c = tris[2];
+    const int32_t edges[6] = {b, c, a, b, b, a}, edge_refs[3] = {-4, 7, 7}; /* (b a) repeats (a b), same ref */
+    assert_int_equal(bodt_mesh_set_feature_edges_ex(h1, 3, edges, edge_refs), BODT_OK);
+    int32_t n = -1, got[4], got_refs[2], plain[4];
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(h1, &n, NULL, NULL, 0), BODT_OK);
+    assert_int_equal(n, 2);
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(h1, &n, got, got_refs, 1), BODT_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(h1, &n, got, got_refs, 2), BODT_OK);
+    const int ab_first = (a < b ? a : b) < (b < c ? b : c);
+    const int32_t ab[2] = {a < b ? a : b, a < b ? b : a}, bc[2] = {b < c ? b : c, b < c ? c : b};
+    const int32_t *first = ab_first ? ab : bc, *second = ab_first ? bc : ab;
+    assert_int_equal(got[0], first[0]);
+    assert_int_equal(got[1], first[1]);
+    assert_int_equal(got[2], second[0]);
+    assert_int_equal(got[3], second[1]);
+    assert_int_equal(got_refs[0], ab_first ? 7 : -4);
+    assert_int_equal(got_refs[1], ab_first ? -4 : 7);
+    assert_int_equal(bodt_mesh_get_feature_edges(h1, &n, plain, 2), BODT_OK);
+    assert_memory_equal(plain, got, sizeof got);
+    assert_int_equal(bodt_mesh_set_feature_edges(h1, 2, got), BODT_OK);
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(h1, &n, got, got_refs, 2), BODT_OK);
+    assert_int_equal(got_refs[0], 0);
+    assert_int_equal(got_refs[1], 0);
+
+    free(tris);
+    free(flags), free(cls), free(refs);
+    free(t1);
+    bodt_mesh_destroy(h1);
+    bodt_mesh_destroy(h0);
+    tm_free(&m);
+}
+
+/* Vertex refs follow the input vertices: once a step made vertices, theirs
+ * come from their parents and a new list is refused. */
+static void test_vertex_refs_after_insertion(void **state) {
+    (void)state;
+    /* jittered boxes until a step inserts (the first seed usually does) */
+    test_mesh m;
+    bodt_mesh *h = NULL;
+    int32_t inserted = 0;
+    for (uint64_t seed = 1; seed <= 10 && inserted == 0; ++seed) {
+        if (h) bodt_mesh_destroy(h), tm_free(&m);
+        h = box_handle(&m, 4, 0.35, seed);
+        int32_t *refs = malloc((size_t)m.nverts * sizeof *refs);
+        for (int32_t v = 0; v < m.nverts; ++v) refs[v] = 5;
+        assert_int_equal(bodt_mesh_set_vertex_refs(h, refs), BODT_OK);
+        free(refs);
+        assert_int_equal(bodt_set_param_int(h, BODT_PARAM_OPS, BODT_OP_FLIP | BODT_OP_INSERT), BODT_OK);
+        assert_int_equal(bodt_set_param_double(h, BODT_PARAM_BAD_ANGLE, 30.0), BODT_OK);
+        for (int k = 0; k < 5 && inserted == 0; ++k) {
+            bodt_step_report r;
+            memset(&r, 0, sizeof r);
+            r.size = sizeof r;
+            assert_int_equal(bodt_step(h, &r), BODT_OK);
+            inserted += r.vertices_inserted;
+        }
+    }
+    assert_true(inserted > 0);
+    int32_t nv = 0;
+    assert_int_equal(bodt_mesh_get_counts(h, &nv, NULL, NULL), BODT_OK);
+    assert_true(nv > m.nverts);
+    int32_t *all = malloc((size_t)nv * sizeof *all);
+    assert_int_equal(bodt_mesh_get_vertex_refs(h, all, (size_t)nv), BODT_OK);
+    for (int32_t v = 0; v < m.nverts; ++v) assert_int_equal(all[v], 5);
+    /* made vertices: 5 where they have parents on their side, else 0 */
+    for (int32_t v = m.nverts; v < nv; ++v) assert_true(all[v] == 5 || all[v] == 0);
+    assert_int_equal(bodt_mesh_set_vertex_refs(h, all), BODT_ERR_WRONG_STATE);
+    assert_contains(bodt_mesh_last_error(h), "before a step made vertices");
+    free(all);
     bodt_mesh_destroy(h);
     tm_free(&m);
 }
@@ -949,6 +1092,13 @@ static void test_refused_setters_change_nothing(void **state) {
     assert_int_equal(bodt_mesh_set_boundary_faces(h, 2, tris, marks), BODT_OK);
     const int32_t fixed[2] = {21, 22};
     assert_int_equal(bodt_mesh_set_fixed_vertices(h, 2, fixed), BODT_OK);
+    const int32_t corners[2] = {0, m.nverts - 1};
+    assert_int_equal(bodt_mesh_set_corners(h, 2, corners), BODT_OK);
+    int32_t *vrefs = malloc((size_t)m.nverts * sizeof *vrefs);
+    for (int32_t v = 0; v < m.nverts; ++v) vrefs[v] = 3 * v;
+    assert_int_equal(bodt_mesh_set_vertex_refs(h, vrefs), BODT_OK);
+    const int32_t edges[4] = {tris[0], tris[1], tris[1], tris[2]}, edge_refs[2] = {8, 9};
+    assert_int_equal(bodt_mesh_set_feature_edges_ex(h, 2, edges, edge_refs), BODT_OK);
     snapshot before;
     take_snapshot(h, &before);
 
@@ -986,12 +1136,27 @@ static void test_refused_setters_change_nothing(void **state) {
     expect_refused(h, bodt_mesh_set_fixed_vertices(h, 2, NULL), BODT_ERR_INVALID_ARGUMENT, &before, "NULL");
     expect_refused(h, bodt_mesh_set_fixed_vertices(h, -2, fixed), BODT_ERR_INVALID_ARGUMENT, &before, "nfixed");
     expect_refused(h, bodt_mesh_set_regions(h, NULL), BODT_ERR_INVALID_ARGUMENT, &before, "NULL");
+    /* corners, vertex refs, feature edges with refs */
+    const int32_t bad_corner[2] = {1, m.nverts};
+    snprintf(msg, sizeof msg, "corner 1 uses vertex %d, but the mesh has %d vertices", m.nverts, m.nverts);
+    expect_refused(h, bodt_mesh_set_corners(h, 2, bad_corner), BODT_ERR_INVALID_ARGUMENT, &before, msg);
+    expect_refused(h, bodt_mesh_set_corners(h, -1, corners), BODT_ERR_INVALID_ARGUMENT, &before, "ncorners");
+    expect_refused(h, bodt_mesh_set_corners(h, 1, NULL), BODT_ERR_INVALID_ARGUMENT, &before, "NULL");
+    expect_refused(h, bodt_mesh_set_vertex_refs(h, NULL), BODT_ERR_INVALID_ARGUMENT, &before, "NULL");
+    const int32_t twice_edges[4] = {tris[0], tris[1], tris[1], tris[0]}, twice_refs[2] = {4, 5};
+    snprintf(msg, sizeof msg, "feature edge 1 (%d, %d) is listed before with ref 4, now with 5", tris[1], tris[0]);
+    expect_refused(h, bodt_mesh_set_feature_edges_ex(h, 2, twice_edges, twice_refs), BODT_ERR_INVALID_ARGUMENT,
+                   &before, msg);
+    const int32_t not_surface[2] = {0, far};
+    expect_refused(h, bodt_mesh_set_feature_edges_ex(h, 1, not_surface, twice_refs), BODT_ERR_INVALID_ARGUMENT,
+                   &before, "is not an edge of a boundary or interface face");
 
     /* a good call afterwards clears the message */
     assert_int_equal(bodt_mesh_set_fixed_vertices(h, 2, fixed), BODT_OK);
     assert_string_equal(bodt_mesh_last_error(h), "");
 
     free_snapshot(&before);
+    free(vrefs);
     free(tris);
     free(regions);
     bodt_mesh_destroy(h);
@@ -1025,6 +1190,13 @@ static void test_null_handle(void **state) {
     assert_int_equal(bodt_mesh_get_regions(NULL, i32, 16), E);
     assert_int_equal(bodt_mesh_get_boundary_faces(NULL, i32, i32, 1), E);
     assert_int_equal(bodt_mesh_get_fixed_vertices(NULL, i32, 16), E);
+    assert_int_equal(bodt_mesh_set_corners(NULL, 1, i32), E);
+    assert_int_equal(bodt_mesh_get_corners(NULL, i32, 16), E);
+    assert_int_equal(bodt_mesh_set_vertex_refs(NULL, i32), E);
+    assert_int_equal(bodt_mesh_get_vertex_refs(NULL, i32, 16), E);
+    assert_int_equal(bodt_mesh_set_feature_edges_ex(NULL, 1, i32, i32), E);
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(NULL, &i32[0], i32, i32, 4), E);
+    assert_int_equal(bodt_mesh_get_index_base(NULL, &mode), E);
     assert_int_equal(bodt_mesh_quality(NULL, &q), E);
     assert_int_equal(bodt_mesh_tet_quality(NULL, BODT_MEASURE_VOLUME, d, 64), E);
     assert_int_equal(bodt_set_mode(NULL, BODT_MODE_LAPLACE), E);
@@ -1073,6 +1245,8 @@ static void test_capacity_too_small(void **state) {
     assert_int_equal(bodt_mesh_get_regions(h, a, (size_t)nt - 1), E);
     assert_int_equal(bodt_mesh_get_boundary_faces(h, a, b, (size_t)nbf - 1), E);
     assert_int_equal(bodt_mesh_get_fixed_vertices(h, a, (size_t)nv - 1), E);
+    assert_int_equal(bodt_mesh_get_corners(h, a, (size_t)nv - 1), E);
+    assert_int_equal(bodt_mesh_get_vertex_refs(h, a, (size_t)nv - 1), E);
     assert_int_equal(bodt_mesh_tet_quality(h, BODT_MEASURE_STRETCH, d, (size_t)nt - 1), E);
     assert_int_equal(bodt_mesh_get_vertices(h, d, 0), E);
     assert_int_equal(bodt_dihedral_bin_edges(d, BODT_DIHEDRAL_BINS), E);
@@ -1082,6 +1256,9 @@ static void test_capacity_too_small(void **state) {
     assert_int_equal(bodt_mesh_get_tets(h, NULL, big), E);
     assert_int_equal(bodt_mesh_get_regions(h, NULL, big), E);
     assert_int_equal(bodt_mesh_get_fixed_vertices(h, NULL, big), E);
+    assert_int_equal(bodt_mesh_get_corners(h, NULL, big), E);
+    assert_int_equal(bodt_mesh_get_vertex_refs(h, NULL, big), E);
+    assert_int_equal(bodt_mesh_get_index_base(h, NULL), E);
     assert_int_equal(bodt_mesh_tet_quality(h, BODT_MEASURE_STRETCH, NULL, big), E);
     assert_int_equal(bodt_dihedral_bin_edges(NULL, 100), E);
 
@@ -1358,6 +1535,8 @@ int main(void) {
         cmocka_unit_test(test_regions_and_interfaces),
         cmocka_unit_test(test_boundary_face_markers),
         cmocka_unit_test(test_fixed_vertices),
+        cmocka_unit_test(test_corners_refs_and_base),
+        cmocka_unit_test(test_vertex_refs_after_insertion),
         cmocka_unit_test(test_unused_vertices),
         cmocka_unit_test(test_create_bad_arguments),
         cmocka_unit_test(test_create_index_out_of_range),

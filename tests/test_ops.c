@@ -103,7 +103,7 @@ static bad_mesh make_bad(int n, double size, double jitter, uint64_t seed, int t
 typedef struct snap {
     int32_t nv, nt, nb;
     double *xyz;
-    int32_t *tets, *regions, *faces, *markers, *fixed, *origins;
+    int32_t *tets, *regions, *faces, *markers, *fixed, *corners, *refs, *origins;
 } snap;
 
 static snap take(const bodt_mesh *h, int base) {
@@ -115,12 +115,16 @@ static snap take(const bodt_mesh *h, int base) {
     s.faces = cleanup_calloc(3 * (size_t)s.nb * sizeof *s.faces);
     s.markers = cleanup_calloc((size_t)s.nb * sizeof *s.markers);
     s.fixed = cleanup_calloc((size_t)s.nv * sizeof *s.fixed);
+    s.corners = cleanup_calloc((size_t)s.nv * sizeof *s.corners);
+    s.refs = cleanup_calloc((size_t)s.nv * sizeof *s.refs);
     s.origins = cleanup_calloc((size_t)s.nt * sizeof *s.origins);
     assert_int_equal(bodt_mesh_get_vertices(h, s.xyz, 3 * (size_t)s.nv), BODT_OK);
     assert_int_equal(bodt_mesh_get_tets(h, s.tets, 4 * (size_t)s.nt), BODT_OK);
     assert_int_equal(bodt_mesh_get_regions(h, s.regions, (size_t)s.nt), BODT_OK);
     assert_int_equal(bodt_mesh_get_boundary_faces(h, s.faces, s.markers, (size_t)s.nb), BODT_OK);
     assert_int_equal(bodt_mesh_get_fixed_vertices(h, s.fixed, (size_t)s.nv), BODT_OK);
+    assert_int_equal(bodt_mesh_get_corners(h, s.corners, (size_t)s.nv), BODT_OK);
+    assert_int_equal(bodt_mesh_get_vertex_refs(h, s.refs, (size_t)s.nv), BODT_OK);
     assert_int_equal(bodt_mesh_get_tet_origins(h, s.origins, (size_t)s.nt), BODT_OK);
     for (size_t k = 0; k < 4 * (size_t)s.nt; ++k) {
         s.tets[k] -= base;
@@ -301,38 +305,104 @@ static int box_line(const bad_mesh *b, const double *p, const double *q) {
     return -1;
 }
 
-/* The caller's feature edges: the edges of boundary faces on a box edge. */
+/* 1 for the vertices of the listed (boundary and interface) faces. */
+static unsigned char *on_surface(const snap *s) {
+    unsigned char *on = cleanup_calloc((size_t)s->nv);
+    for (size_t k = 0; k < 3 * (size_t)s->nb; ++k) on[s->faces[k]] = 1;
+    return on;
+}
+
+/* The box's 8 corner points (every coordinate 0 or size). */
+static int is_box_corner(const bad_mesh *b, const double *p) {
+    const double tol = 1e-12 * b->size;
+    for (int c = 0; c < 3; ++c)
+        if (!(fabs(p[c]) <= tol || fabs(p[c] - b->size) <= tol)) return 0;
+    return 1;
+}
+
+/* Ref of the caller's feature edges on box edge line `line`. */
+#define LINE_REF(line) (100 + (line))
+/* Vertex refs: boundary-condition style, 1 on the surface, 2 inside. */
+enum { REF_SURFACE = 1, REF_INSIDE = 2 };
+
+/* The caller's features: the edges of boundary faces on a box edge, each
+ * with its line's ref; the box's corners as corners; vertex refs. */
 static void set_box_features(const bad_mesh *b, bodt_mesh *h, int base) {
     const snap s = take(h, base);
     int32_t *e = cleanup_calloc(6 * (size_t)s.nb * sizeof *e);
+    int32_t *refs = cleanup_calloc(3 * (size_t)s.nb * sizeof *refs);
     int32_t n = 0;
     for (int32_t f = 0; f < s.nb; ++f)
         for (int i = 0; i < 3; ++i) {
             const int32_t u = s.faces[3 * f + i], v = s.faces[3 * f + (i + 1) % 3];
-            if (u < v && box_line(b, &s.xyz[3 * u], &s.xyz[3 * v]) >= 0) {
+            const int line = box_line(b, &s.xyz[3 * u], &s.xyz[3 * v]);
+            if (u < v && line >= 0) {
                 e[2 * n] = u + base;
                 e[2 * n + 1] = v + base;
-                ++n;
+                refs[n++] = LINE_REF(line);
             }
         }
     assert_true(n > 0);
-    const int st = bodt_mesh_set_feature_edges(h, n, e);
-    if (st != BODT_OK) fail_msg("set_feature_edges: %s", bodt_mesh_last_error(h));
+    int st = bodt_mesh_set_feature_edges_ex(h, n, e, refs);
+    if (st != BODT_OK) fail_msg("set_feature_edges_ex: %s", bodt_mesh_last_error(h));
+    int32_t *corners = cleanup_calloc((size_t)s.nv * sizeof *corners);
+    int32_t nc = 0;
+    for (int32_t v = 0; v < s.nv; ++v)
+        if (is_box_corner(b, &s.xyz[3 * v])) corners[nc++] = v + base;
+    assert_int_equal(nc, 8);
+    st = bodt_mesh_set_corners(h, nc, corners);
+    if (st != BODT_OK) fail_msg("set_corners: %s", bodt_mesh_last_error(h));
+    const unsigned char *on = on_surface(&s);
+    int32_t *vrefs = cleanup_calloc((size_t)s.nv * sizeof *vrefs);
+    for (int32_t v = 0; v < s.nv; ++v) vrefs[v] = on[v] ? REF_SURFACE : REF_INSIDE;
+    st = bodt_mesh_set_vertex_refs(h, vrefs);
+    if (st != BODT_OK) fail_msg("set_vertex_refs: %s", bodt_mesh_last_error(h));
 }
 
-/* The caller's feature edges after the steps: each on a box edge line, and
- * each of the 12 lines covered once (their lengths add up to size). */
+/* After the steps: corners unmoved and classed so; vertex refs as
+ * documented (a made vertex takes the ref of its parents on its side of
+ * the surface, 0 when it has none there). */
+static void check_corners_and_refs(const bad_mesh *b, const bodt_mesh *h, const snap *s0, const snap *s,
+                                   const char *name, int step) {
+    int32_t *cls = cleanup_calloc((size_t)s->nv * sizeof *cls);
+    assert_int_equal(bodt_mesh_get_vertex_classes(h, cls, (size_t)s->nv), BODT_OK);
+    const unsigned char *on = on_surface(s);
+    for (int32_t v = 0; v < s->nv; ++v) {
+        const int corner = v < s0->nv && s0->corners[v];
+        if (s->corners[v] != corner)
+            fail_msg("%s step %d: vertex %d: corner flag %d, expected %d", name, step, v, s->corners[v], corner);
+        if (corner) {
+            if (memcmp(&s->xyz[3 * v], &s0->xyz[3 * v], 3 * sizeof(double)) != 0)
+                fail_msg("%s step %d: corner %d moved", name, step, v);
+            if (cls[v] != BODT_VERTEX_CORNER) fail_msg("%s step %d: corner %d has class %d", name, step, v, cls[v]);
+            assert_true(is_box_corner(b, &s->xyz[3 * v]));
+        }
+        if (cls[v] == BODT_VERTEX_UNUSED) continue;
+        const int32_t want = on[v] ? REF_SURFACE : REF_INSIDE;
+        if (v < s0->nv ? s->refs[v] != s0->refs[v] : !(s->refs[v] == want || (!on[v] && s->refs[v] == 0)))
+            fail_msg("%s step %d: %s vertex %d %s has ref %d", name, step, v < s0->nv ? "input" : "made", v,
+                     on[v] ? "on the surface" : "inside", s->refs[v]);
+    }
+}
+
+/* The caller's feature edges after the steps: each on a box edge line with
+ * that line's ref, and each of the 12 lines covered once (their lengths add
+ * up to size). */
 static void check_feature_edges(const bad_mesh *b, const bodt_mesh *h, const snap *s, const char *name, int step) {
     int32_t n = -1;
-    assert_int_equal(bodt_mesh_get_feature_edges(h, &n, NULL, 0), BODT_OK);
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(h, &n, NULL, NULL, 0), BODT_OK);
     int32_t *e = cleanup_calloc(2 * (size_t)n * sizeof *e);
-    assert_int_equal(bodt_mesh_get_feature_edges(h, &n, e, (size_t)n), BODT_OK);
+    int32_t *refs = cleanup_calloc((size_t)n * sizeof *refs);
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(h, &n, e, refs, (size_t)n), BODT_OK);
     double len[12] = {0};
     for (int32_t k = 0; k < n; ++k) {
         const double *p = &s->xyz[3 * e[2 * k]], *q = &s->xyz[3 * e[2 * k + 1]];
         const int line = box_line(b, p, q);
         if (line < 0)
             fail_msg("%s step %d: feature edge %d (%d %d) is on no box edge", name, step, k, e[2 * k], e[2 * k + 1]);
+        if (refs[k] != LINE_REF(line))
+            fail_msg("%s step %d: feature edge %d (%d %d) has ref %d, its line's is %d", name, step, k, e[2 * k],
+                     e[2 * k + 1], refs[k], LINE_REF(line));
         len[line] += fabs(p[line / 4] - q[line / 4]);
     }
     for (int line = 0; line < 12; ++line)
@@ -546,7 +616,10 @@ static bodt_mesh *checked_run(const bad_mesh *b, const run_opts *o, const char *
             if ((cls[v] == BODT_VERTEX_UNUSED) != !used[v])
                 fail_msg("%s step %d: vertex %d in %s tet has class %d", name, k, v, used[v] ? "a" : "no", cls[v]);
         }
-        if (o->features) check_feature_edges(b, h, &s, name, k);
+        if (o->features) {
+            check_feature_edges(b, h, &s, name, k);
+            check_corners_and_refs(b, h, &s0, &s, name, k);
+        }
         if (!(surface_kept) && (s.nb != s0.nb || memcmp(face_set(&s), faces0, 4 * (size_t)s.nb * sizeof *faces0)))
             res->faces_changed = 1;
     }

@@ -191,7 +191,11 @@ Case make_case(const Input& in) {
         c.mesh = std::move(b.mesh);
         if (!in.regions.empty()) c.mesh.regions = in.regions;
         for (const auto& [f, m] : in.markers) c.mesh.face_markers[f] = m;
-        for (const auto& e : in.features) c.mesh.feature_edges.insert(bodt::edge_key(e[0], e[1]));
+        // Each feature edge gets its own ref (10 + its index), which splits
+        // and collapses must hand on: checked as the length per ref.
+        for (size_t k = 0; k < in.features.size(); ++k)
+            c.mesh.feature_edges.emplace(bodt::edge_key(in.features[k][0], in.features[k][1]),
+                                         static_cast<int32_t>(10 + k));
         for (int32_t v : in.fixed) c.mesh.vflags[v] |= bodt::kFixed;
         c.mesh.update_vertex_flags();
         bodt::RegionSurfaces s;
@@ -249,7 +253,7 @@ struct Measures {
     std::map<SurfaceKey, Vec3> vector_area;
     std::map<SurfaceKey, double> area;
     double total_volume = 0.0, total_area = 0.0;
-    double feature_length = 0.0;  // the caller's feature edges
+    std::map<int32_t, double> feature_length;  // of the caller's feature edges, per ref
 };
 
 Measures measure(const TetMesh& m, const FaceOwners& owners) {
@@ -284,8 +288,8 @@ Measures measure(const TetMesh& m, const FaceOwners& owners) {
         out.area[key] += n.norm();
         out.total_area += n.norm();
     }
-    for (bodt::EdgeKey k : m.feature_edges)
-        out.feature_length += (m.points[bodt::edge_first(k)] - m.points[bodt::edge_second(k)]).norm();
+    for (const auto& [k, ref] : m.feature_edges)
+        out.feature_length[ref] += (m.points[bodt::edge_first(k)] - m.points[bodt::edge_second(k)]).norm();
     return out;
 }
 
@@ -412,7 +416,7 @@ TetMesh check_valid(const EditableMesh& em, const Reference& ref, const char* wh
         CHECK(it != owners.end(), "marker %d on (%d %d %d), not a face", marker, f.v[0], f.v[1], f.v[2]);
         CHECK(m.is_surface_face(it->second[0].first, it->second[0].second), "marker %d on an inner face", marker);
     }
-    for (bodt::EdgeKey k : m.feature_edges) {
+    for (const auto& [k, ref] : m.feature_edges) {
         const int32_t a = bodt::edge_first(k), b = bodt::edge_second(k);
         CHECK(a >= 0 && b < m.num_vertices() && a != b, "feature edge (%d %d)", a, b);
         bool on_surface = false;
@@ -443,8 +447,13 @@ TetMesh check_valid(const EditableMesh& em, const Reference& ref, const char* wh
               "marker %d, regions %d/%d: the vector area moved by %g", key[0], key[1], key[2],
               (got.vector_area.at(key) - want.vector_area.at(key)).norm());
     }
-    CHECK(std::fabs(got.feature_length - want.feature_length) <= 1e-12 * (1.0 + want.feature_length),
-          "feature edges' length %.17g, expected %.17g", got.feature_length, want.feature_length);
+    CHECK(got.feature_length.size() == want.feature_length.size(), "feature edges of %zu refs, expected %zu",
+          got.feature_length.size(), want.feature_length.size());
+    for (const auto& [ref, length] : want.feature_length) {
+        const double have = got.feature_length.count(ref) ? got.feature_length.at(ref) : 0.0;
+        CHECK(std::fabs(have - length) <= 1e-12 * (1.0 + length), "feature edges of ref %d: length %.17g, expected %.17g",
+              ref, have, length);
+    }
 
     // History: parents, corners.
     for (size_t k = 0; k < m.new_parents.size(); ++k) {

@@ -67,12 +67,12 @@ bool is_surface_edge(const bodt::TetMesh& mesh, int32_t a, int32_t b) {
     return false;
 }
 
-void apply_feature_edges(bodt_mesh* h, int32_t nedges, const int32_t* edges) {
+void apply_feature_edges(bodt_mesh* h, int32_t nedges, const int32_t* edges, const int32_t* refs) {
     require(nedges >= 0, "nedges must not be negative");
     require(nedges == 0 || edges != nullptr, "edges is NULL");
     const bodt::TetMesh& mesh = h->mesh;
     const int base = h->index_base;
-    bodt::EdgeSet fresh;
+    bodt::EdgeRefs fresh;
     for (int32_t e = 0; e < nedges; ++e) {
         int32_t v[2];
         for (int k = 0; k < 2; ++k) {
@@ -85,16 +85,24 @@ void apply_feature_edges(bodt_mesh* h, int32_t nedges, const int32_t* edges) {
                                                        std::to_string(v[0] + base) + ", " +
                                                        std::to_string(v[1] + base) +
                                                        ") is not an edge of a boundary or interface face");
-        fresh.insert(bodt::edge_key(v[0], v[1]));
+        const int32_t ref = refs ? refs[e] : 0;
+        const auto [it, added] = fresh.emplace(bodt::edge_key(v[0], v[1]), ref);
+        if (!added && it->second != ref)
+            throw Error(BODT_ERR_INVALID_ARGUMENT, "feature edge " + std::to_string(e + base) + " (" +
+                                                       std::to_string(v[0] + base) + ", " +
+                                                       std::to_string(v[1] + base) + ") is listed before with ref " +
+                                                       std::to_string(it->second) + ", now with " +
+                                                       std::to_string(ref));
     }
     h->mesh.feature_edges = std::move(fresh);
     h->improver.mesh_data_changed();
 }
 
-std::vector<bodt::EdgeKey> sorted_feature_edges(const bodt::TetMesh& mesh) {
-    std::vector<bodt::EdgeKey> keys(mesh.feature_edges.begin(), mesh.feature_edges.end());
-    std::sort(keys.begin(), keys.end());
-    return keys;
+// The caller's feature edges with their refs, sorted by edge.
+std::vector<std::pair<bodt::EdgeKey, int32_t>> sorted_feature_edges(const bodt::TetMesh& mesh) {
+    std::vector<std::pair<bodt::EdgeKey, int32_t>> edges(mesh.feature_edges.begin(), mesh.feature_edges.end());
+    std::sort(edges.begin(), edges.end());
+    return edges;
 }
 
 void apply_face_markers(bodt_mesh* h, int32_t nfaces, const int32_t* triangles, const int32_t* markers) {
@@ -126,15 +134,42 @@ void apply_face_markers(bodt_mesh* h, int32_t nfaces, const int32_t* triangles, 
     h->improver.mesh_data_changed();
 }
 
-void apply_fixed(bodt_mesh* h, int32_t nfixed, const int32_t* vertices) {
-    require(nfixed >= 0, "nfixed must not be negative");
-    require(nfixed == 0 || vertices != nullptr, "vertices is NULL");
+// Sets `flag` (kFixed or kCorner) on the listed vertices only.
+void apply_vertex_flag(bodt_mesh* h, int32_t n, const int32_t* vertices, bodt::VertexFlag flag, const char* count,
+                       const char* what) {
+    if (n < 0) throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(count) + " must not be negative");
+    require(n == 0 || vertices != nullptr, "vertices is NULL");
     bodt::TetMesh& mesh = h->mesh;
-    for (int32_t k = 0; k < nfixed; ++k)
-        bodt::check_vertex_index(vertices[k], mesh.num_vertices(), h->index_base, "fixed vertex", k);
-    for (uint8_t& f : mesh.vflags) f &= static_cast<uint8_t>(~bodt::kFixed);
-    for (int32_t k = 0; k < nfixed; ++k) mesh.vflags[vertices[k] - h->index_base] |= bodt::kFixed;
+    for (int32_t k = 0; k < n; ++k) bodt::check_vertex_index(vertices[k], mesh.num_vertices(), h->index_base, what, k);
+    for (uint8_t& f : mesh.vflags) f &= static_cast<uint8_t>(~flag);
+    for (int32_t k = 0; k < n; ++k) mesh.vflags[vertices[k] - h->index_base] |= flag;
     h->improver.mesh_data_changed();
+}
+
+void apply_fixed(bodt_mesh* h, int32_t nfixed, const int32_t* vertices) {
+    apply_vertex_flag(h, nfixed, vertices, bodt::kFixed, "nfixed", "fixed vertex");
+}
+
+void apply_corners(bodt_mesh* h, int32_t ncorners, const int32_t* vertices) {
+    apply_vertex_flag(h, ncorners, vertices, bodt::kCorner, "ncorners", "corner");
+}
+
+// Refs are the input vertices': a handle's vertices are all input vertices
+// until an operation makes new ones, whose refs then come from their parents.
+void apply_vertex_refs(bodt_mesh* h, const int32_t* refs) {
+    require(refs != nullptr, "refs is NULL");
+    bodt::TetMesh& mesh = h->mesh;
+    if (!mesh.new_parents.empty())
+        throw Error(BODT_ERR_WRONG_STATE,
+                    "vertex refs can be set only before a step made vertices (theirs follow from their parents)");
+    mesh.input_vertex_refs.assign(refs, refs + mesh.num_vertices());
+}
+
+void get_vertex_flag(const bodt_mesh* h, int32_t* out, size_t capacity, bodt::VertexFlag flag, const char* what) {
+    if (!out) throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(what) + " is NULL");
+    const auto& flags = h->mesh.vflags;
+    require_capacity(capacity, flags.size(), what);
+    for (size_t v = 0; v < flags.size(); ++v) out[v] = (flags[v] & flag) ? 1 : 0;
 }
 
 void fill_step_report(const bodt::StepReport& r, bodt_step_report* out) {
@@ -167,9 +202,15 @@ bodt::MeshData to_mesh_data(const bodt_mesh* h) {
         d.triangles.insert(d.triangles.end(), f.v.begin(), f.v.end());
         d.tri_markers.push_back(f.marker);
     }
-    for (int32_t v = 0; v < mesh.num_vertices(); ++v)
+    for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
         if (mesh.vflags[v] & bodt::kFixed) d.fixed.push_back(v);
-    for (bodt::EdgeKey k : sorted_feature_edges(mesh)) d.feature_edges.insert(d.feature_edges.end(), {bodt::edge_first(k), bodt::edge_second(k)});
+        if (mesh.vflags[v] & bodt::kCorner) d.corners.push_back(v);
+    }
+    for (const auto& [k, ref] : sorted_feature_edges(mesh)) {
+        d.feature_edges.insert(d.feature_edges.end(), {bodt::edge_first(k), bodt::edge_second(k)});
+        d.edge_refs.push_back(ref);
+    }
+    if (!mesh.input_vertex_refs.empty()) d.vertex_refs = mesh.vertex_refs();
     return d;
 }
 
@@ -209,7 +250,10 @@ bodt_mesh* from_mesh_data(const bodt::MeshData& d, uint32_t flags) {
         apply_face_markers(h.get(), static_cast<int32_t>(d.tri_markers.size()), d.triangles.data(),
                            d.tri_markers.data());
         apply_fixed(h.get(), static_cast<int32_t>(d.fixed.size()), d.fixed.data());
-        apply_feature_edges(h.get(), static_cast<int32_t>(d.feature_edges.size() / 2), d.feature_edges.data());
+        apply_corners(h.get(), static_cast<int32_t>(d.corners.size()), d.corners.data());
+        apply_feature_edges(h.get(), static_cast<int32_t>(d.feature_edges.size() / 2), d.feature_edges.data(),
+                            d.edge_refs.empty() ? nullptr : d.edge_refs.data());
+        if (!d.vertex_refs.empty()) apply_vertex_refs(h.get(), d.vertex_refs.data());
         h->index_base = handle_base;
         return h.release();
     } catch (const Error& e) {
@@ -283,7 +327,19 @@ int bodt_mesh_set_regions(bodt_mesh* mesh, const int32_t* region_ids) {
 }
 
 int bodt_mesh_set_feature_edges(bodt_mesh* mesh, int32_t nedges, const int32_t* edges) {
-    return with_mesh(mesh, [&] { apply_feature_edges(mesh, nedges, edges); });
+    return with_mesh(mesh, [&] { apply_feature_edges(mesh, nedges, edges, nullptr); });
+}
+
+int bodt_mesh_set_feature_edges_ex(bodt_mesh* mesh, int32_t nedges, const int32_t* edges, const int32_t* refs) {
+    return with_mesh(mesh, [&] { apply_feature_edges(mesh, nedges, edges, refs); });
+}
+
+int bodt_mesh_set_corners(bodt_mesh* mesh, int32_t ncorners, const int32_t* vertices) {
+    return with_mesh(mesh, [&] { apply_corners(mesh, ncorners, vertices); });
+}
+
+int bodt_mesh_set_vertex_refs(bodt_mesh* mesh, const int32_t* refs) {
+    return with_mesh(mesh, [&] { apply_vertex_refs(mesh, refs); });
 }
 
 int bodt_mesh_set_boundary_faces(bodt_mesh* mesh, int32_t nfaces, const int32_t* triangles, const int32_t* markers) {
@@ -347,25 +403,46 @@ int bodt_mesh_get_boundary_faces(const bodt_mesh* mesh, int32_t* triangles, int3
 }
 
 int bodt_mesh_get_fixed_vertices(const bodt_mesh* mesh, int32_t* is_fixed, size_t capacity) {
+    return with_mesh(mesh, [&] { get_vertex_flag(mesh, is_fixed, capacity, bodt::kFixed, "is_fixed"); });
+}
+
+int bodt_mesh_get_corners(const bodt_mesh* mesh, int32_t* is_corner, size_t capacity) {
+    return with_mesh(mesh, [&] { get_vertex_flag(mesh, is_corner, capacity, bodt::kCorner, "is_corner"); });
+}
+
+int bodt_mesh_get_vertex_refs(const bodt_mesh* mesh, int32_t* refs, size_t capacity) {
     return with_mesh(mesh, [&] {
-        require(is_fixed != nullptr, "is_fixed is NULL");
-        const auto& flags = mesh->mesh.vflags;
-        require_capacity(capacity, flags.size(), "is_fixed");
-        for (size_t v = 0; v < flags.size(); ++v) is_fixed[v] = (flags[v] & bodt::kFixed) ? 1 : 0;
+        require(refs != nullptr, "refs is NULL");
+        require_capacity(capacity, mesh->mesh.points.size(), "refs");
+        const std::vector<int32_t> all = mesh->mesh.vertex_refs();
+        std::copy(all.begin(), all.end(), refs);
     });
 }
 
 int bodt_mesh_get_feature_edges(const bodt_mesh* mesh, int32_t* nedges, int32_t* edges, size_t capacity) {
+    return bodt_mesh_get_feature_edges_ex(mesh, nedges, edges, nullptr, capacity);
+}
+
+int bodt_mesh_get_feature_edges_ex(const bodt_mesh* mesh, int32_t* nedges, int32_t* edges, int32_t* refs,
+                                   size_t capacity) {
     return with_mesh(mesh, [&] {
-        const auto keys = sorted_feature_edges(mesh->mesh);
-        if (edges) {
-            require_capacity(capacity, keys.size(), "feature edges");
-            for (size_t e = 0; e < keys.size(); ++e) {
-                edges[2 * e] = bodt::edge_first(keys[e]) + mesh->index_base;
-                edges[2 * e + 1] = bodt::edge_second(keys[e]) + mesh->index_base;
+        const auto all = sorted_feature_edges(mesh->mesh);
+        if (edges || refs) require_capacity(capacity, all.size(), "feature edges");
+        for (size_t e = 0; e < all.size(); ++e) {
+            if (edges) {
+                edges[2 * e] = bodt::edge_first(all[e].first) + mesh->index_base;
+                edges[2 * e + 1] = bodt::edge_second(all[e].first) + mesh->index_base;
             }
+            if (refs) refs[e] = all[e].second;
         }
-        if (nedges) *nedges = static_cast<int32_t>(keys.size());
+        if (nedges) *nedges = static_cast<int32_t>(all.size());
+    });
+}
+
+int bodt_mesh_get_index_base(const bodt_mesh* mesh, int* index_base) {
+    return with_mesh(mesh, [&] {
+        require(index_base != nullptr, "index_base is NULL");
+        *index_base = mesh->index_base;
     });
 }
 

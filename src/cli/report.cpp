@@ -152,27 +152,6 @@ bool api(int status, const bodt_mesh* mesh, const char* what, std::string& error
     return false;
 }
 
-// The handle's index base: vertex 0 is an input vertex, its own single
-// parent, which bodt_mesh_get_vertex_parents gives in the caller's base.
-bool index_base(const bodt_mesh* mesh, int32_t nverts, int& base, std::string& error) {
-    int64_t count = 0;
-    if (!api(bodt_mesh_get_parent_count(mesh, &count), mesh, "bodt_mesh_get_parent_count", error))
-        return false;
-    std::vector<int64_t> offsets(static_cast<size_t>(nverts) + 1);
-    std::vector<int32_t> parents(static_cast<size_t>(std::max<int64_t>(count, 1)));
-    std::vector<double> weights(parents.size());
-    if (!api(bodt_mesh_get_vertex_parents(mesh, offsets.data(), offsets.size(), parents.data(),
-                                          weights.data(), parents.size()),
-             mesh, "bodt_mesh_get_vertex_parents", error))
-        return false;
-    if (count < 1 || offsets[1] - offsets[0] != 1 || (parents[0] != 0 && parents[0] != 1)) {
-        error = "cannot tell the mesh's index base";
-        return false;
-    }
-    base = parents[0];
-    return true;
-}
-
 // The six dihedral angles of a tet in degrees, as the library computes them
 // (src/quality/tet_geometry.hpp): pi minus the angle between the normals of
 // the two faces at each edge.  Independent of the tet's orientation.
@@ -215,7 +194,7 @@ bool load(const bodt_mesh* mesh, const std::string& name, MeshData& d, std::stri
         return false;
     d.q.size = sizeof(bodt_quality);
     if (!api(bodt_mesh_quality(mesh, &d.q), mesh, "bodt_mesh_quality", error)) return false;
-    if (!index_base(mesh, d.nverts, d.base, error)) return false;
+    if (!api(bodt_mesh_get_index_base(mesh, &d.base), mesh, "bodt_mesh_get_index_base", error)) return false;
 
     const size_t nv = static_cast<size_t>(d.nverts), nt = static_cast<size_t>(d.ntets);
     d.xyz.resize(3 * nv);

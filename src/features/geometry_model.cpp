@@ -117,7 +117,7 @@ GeometryModel GeometryModel::extract(const TetMesh& mesh, const GeometrySettings
     const double cos_limit = std::cos(settings.feature_angle_deg * kDegree);
     for (const auto& [key, fs] : on_edge)
         if (is_sharp(faces, fs, edge_first(key), edge_second(key), cos_limit, folds)) g.sharp_.insert(key);
-    for (EdgeKey key : mesh.feature_edges)
+    for (const auto& [key, ref] : mesh.feature_edges)
         if (on_edge.count(key)) g.sharp_.insert(key);
     std::vector<std::vector<int32_t>> along(static_cast<size_t>(nv));
     for (EdgeKey key : g.sharp_) {
@@ -133,7 +133,7 @@ GeometryModel GeometryModel::extract(const TetMesh& mesh, const GeometrySettings
         for (int32_t v : f.v) g.cls_[v] = VertexClass::Surface;
     for (int32_t v = 0; v < nv; ++v) {
         if (along[v].empty()) continue;
-        bool corner = along[v].size() != 2;
+        bool corner = along[v].size() != 2 || (mesh.vflags[v] & kCorner);  // the caller's corners end chains
         if (!corner) {
             const Vec3 da = at[along[v][0]] - at[v], db = at[along[v][1]] - at[v];
             corner = da.dot(db) > cos_kink * da.norm() * db.norm();
@@ -319,8 +319,9 @@ VertexClasses GeometryModel::vertex_classes(const TetMesh& mesh) const {
     VertexClasses out;
     out.cls.assign(cls_.begin(), cls_.begin() + mesh.num_vertices());
     for (int32_t v = 0; v < mesh.num_vertices(); ++v)
-        if ((mesh.vflags[v] & kFixed) ||
-            ((cls_[v] == VertexClass::Surface || cls_[v] == VertexClass::FeatureLine) && !shape_of(v)))
+        if (mesh.vflags[v] & kCorner) out.cls[v] = VertexClass::Corner;
+        else if ((mesh.vflags[v] & kFixed) ||
+                 ((cls_[v] == VertexClass::Surface || cls_[v] == VertexClass::FeatureLine) && !shape_of(v)))
             out.cls[v] = VertexClass::Fixed;
     out.line.assign(out.cls.size(), {-1, -1});
     out.feature_edges = sharp_;

@@ -102,7 +102,7 @@ VertexClasses classify_vertices(const TetMesh& mesh, const RegionSurfaces& surfa
     EdgeSet features;
     if (settings.detect_features) {
         features = detect_feature_edges(mesh, surfaces, settings.feature_angle_deg);
-        features.insert(mesh.feature_edges.begin(), mesh.feature_edges.end());
+        for (const auto& [key, ref] : mesh.feature_edges) features.insert(key);
     }
     std::vector<int32_t> count(static_cast<size_t>(nv), 0);
     for (EdgeKey key : features) {
@@ -120,6 +120,7 @@ VertexClasses classify_vertices(const TetMesh& mesh, const RegionSurfaces& surfa
         const uint8_t flags = mesh.vflags[v];
         VertexClass& c = out.cls[v];
         if (flags & kUnused) c = VertexClass::Unused;
+        else if (flags & kCorner) c = VertexClass::Corner;
         else if (flags & kFixed) c = VertexClass::Fixed;
         else if (fin[v] || surfaces.blocked(v) ||
                  ((flags & (kOnBoundary | kOnInterface)) && surfaces.begin(v) == surfaces.end(v)))

@@ -1,11 +1,15 @@
 // Medit .mesh (ASCII): the format of MMG, CGAL and many FEA tools.
-//   Vertices     x y z ref
+//   Vertices     x y z ref        ref -> vertex ref
 //   Tetrahedra   a b c d ref      ref -> region id
 //   Triangles    a b c ref        ref -> face marker
-//   Corners, RequiredVertices     -> fixed vertices
-//   Edges a b ref + Ridges e      -> feature edges (the ridges among the edges)
-// Other sections of the format are skipped by their known record sizes; an
-// unknown keyword is an error.  Indices in the file are 1-based.
+//   Edges        a b ref          -> feature edges with their refs
+//   Ridges       e                -> checked; every edge is a feature edge
+//   Corners      v                -> corners
+//   RequiredVertices v            -> fixed vertices
+// Every listed edge is a feature edge: MMG keeps its reference edges as
+// lines as it keeps its ridges, and Gmsh and CGAL list their feature curves
+// there.  Other sections of the format are skipped by their known record
+// sizes; an unknown keyword is an error.  Indices in the file are 1-based.
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
 #include "io/text_scanner.hpp"
@@ -20,7 +24,7 @@ namespace bodt {
 namespace {
 
 // Sections read for their data.
-enum class Section { Vertices, Tetrahedra, Triangles, Fixed, Edges, Ridges, Skip };
+enum class Section { Vertices, Tetrahedra, Triangles, Corners, Required, Edges, Ridges, Skip };
 
 struct Keyword {
     const char* name;
@@ -32,8 +36,8 @@ constexpr Keyword kKeywords[] = {
     {"Vertices", Section::Vertices, 4},
     {"Tetrahedra", Section::Tetrahedra, 5},
     {"Triangles", Section::Triangles, 4},
-    {"Corners", Section::Fixed, 1},
-    {"RequiredVertices", Section::Fixed, 1},
+    {"Corners", Section::Corners, 1},
+    {"RequiredVertices", Section::Required, 1},
     {"Edges", Section::Edges, 3},
     {"Ridges", Section::Ridges, 1},
     {"RequiredEdges", Section::Skip, 1},
@@ -82,8 +86,7 @@ MeshData read_medit(const std::string& path) {
     d.base = 1;
     int64_t nverts = -1;
     bool saw_tets = false;
-    std::vector<int32_t> edges;       // 2 per edge of the Edges section
-    std::vector<std::pair<int64_t, int64_t>> ridges;  // 1-based index into edges, line
+    std::vector<std::pair<int64_t, int64_t>> ridges;  // 1-based index into the edges, line
     std::string_view token;
     if (!in.next(token) || token != "MeshVersionFormatted")
         in.fail("not a Medit mesh: it must start with MeshVersionFormatted");
@@ -107,9 +110,10 @@ MeshData read_medit(const std::string& path) {
                 if (n > INT32_MAX) in.fail("more than 2^31 - 1 vertices");
                 nverts = n;
                 d.xyz.resize(static_cast<size_t>(3 * n));
+                d.vertex_refs.resize(static_cast<size_t>(n));
                 for (int64_t v = 0; v < n; ++v) {
                     for (int k = 0; k < 3; ++k) d.xyz[3 * v + k] = in.read_double("a vertex coordinate");
-                    in.read_int("a vertex reference");
+                    d.vertex_refs[v] = read_ref(in, "vertex reference");
                 }
                 break;
             case Section::Tetrahedra:
@@ -129,14 +133,17 @@ MeshData read_medit(const std::string& path) {
                     d.tri_markers.push_back(read_ref(in, "triangle reference"));
                 }
                 break;
-            case Section::Fixed:
+            case Section::Corners:
+                for (int64_t k = 0; k < n; ++k) d.corners.push_back(read_vertex(in, nverts, key->name));
+                break;
+            case Section::Required:
                 for (int64_t k = 0; k < n; ++k) d.fixed.push_back(read_vertex(in, nverts, key->name));
                 break;
             case Section::Edges:
                 for (int64_t e = 0; e < n; ++e) {
-                    edges.push_back(read_vertex(in, nverts, "edge vertex"));
-                    edges.push_back(read_vertex(in, nverts, "edge vertex"));
-                    read_ref(in, "edge reference");
+                    d.feature_edges.push_back(read_vertex(in, nverts, "edge vertex"));
+                    d.feature_edges.push_back(read_vertex(in, nverts, "edge vertex"));
+                    d.edge_refs.push_back(read_ref(in, "edge reference"));
                 }
                 break;
             case Section::Ridges:
@@ -152,13 +159,11 @@ MeshData read_medit(const std::string& path) {
     }
     if (nverts < 0) in.fail("no Vertices section");
     if (!saw_tets) in.fail("no Tetrahedra section");
-    const int64_t nedges = static_cast<int64_t>(edges.size() / 2);
-    for (const auto& [r, line] : ridges) {
+    const int64_t nedges = static_cast<int64_t>(d.edge_refs.size());
+    for (const auto& [r, line] : ridges)
         if (r < 1 || r > nedges)
             throw Error(BODT_ERR_IO, path + ":" + std::to_string(line) + ": ridge " + std::to_string(r) +
                                          " is not one of the " + std::to_string(nedges) + " edges");
-        d.feature_edges.insert(d.feature_edges.end(), {edges[2 * (r - 1)], edges[2 * (r - 1) + 1]});
-    }
     return d;
 }
 
@@ -169,7 +174,8 @@ void write_medit(const std::string& path, const MeshData& d) {
     const size_t nv = d.xyz.size() / 3, nt = d.tets.size() / 4, nf = d.tri_markers.size();
     std::fprintf(o, "MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n%zu\n", nv);
     for (size_t v = 0; v < nv; ++v)
-        std::fprintf(o, "%.17g %.17g %.17g 0\n", d.xyz[3 * v], d.xyz[3 * v + 1], d.xyz[3 * v + 2]);
+        std::fprintf(o, "%.17g %.17g %.17g %d\n", d.xyz[3 * v], d.xyz[3 * v + 1], d.xyz[3 * v + 2],
+                     d.vertex_refs.empty() ? 0 : d.vertex_refs[v]);
     std::fprintf(o, "\nTriangles\n%zu\n", nf);
     for (size_t k = 0; k < nf; ++k)
         std::fprintf(o, "%d %d %d %d\n", d.triangles[3 * k] + shift, d.triangles[3 * k + 1] + shift,
@@ -178,6 +184,10 @@ void write_medit(const std::string& path, const MeshData& d) {
     for (size_t t = 0; t < nt; ++t)
         std::fprintf(o, "%d %d %d %d %d\n", d.tets[4 * t] + shift, d.tets[4 * t + 1] + shift, d.tets[4 * t + 2] + shift,
                      d.tets[4 * t + 3] + shift, d.regions.empty() ? 0 : d.regions[t]);
+    if (!d.corners.empty()) {
+        std::fprintf(o, "\nCorners\n%zu\n", d.corners.size());
+        for (int32_t v : d.corners) std::fprintf(o, "%d\n", v + shift);
+    }
     if (!d.fixed.empty()) {
         std::fprintf(o, "\nRequiredVertices\n%zu\n", d.fixed.size());
         for (int32_t v : d.fixed) std::fprintf(o, "%d\n", v + shift);
@@ -186,7 +196,8 @@ void write_medit(const std::string& path, const MeshData& d) {
     if (ne > 0) {
         std::fprintf(o, "\nEdges\n%zu\n", ne);
         for (size_t e = 0; e < ne; ++e)
-            std::fprintf(o, "%d %d 0\n", d.feature_edges[2 * e] + shift, d.feature_edges[2 * e + 1] + shift);
+            std::fprintf(o, "%d %d %d\n", d.feature_edges[2 * e] + shift, d.feature_edges[2 * e + 1] + shift,
+                         d.edge_refs.empty() ? 0 : d.edge_refs[e]);
         std::fprintf(o, "\nRidges\n%zu\n", ne);
         for (size_t e = 0; e < ne; ++e) std::fprintf(o, "%zu\n", e + 1);
     }

@@ -19,8 +19,11 @@ struct MeshData {
     std::vector<int32_t> regions;      // one per tet, or empty
     std::vector<int32_t> triangles;    // 3 per marked face
     std::vector<int32_t> tri_markers;  // one per marked face
+    std::vector<int32_t> vertex_refs;  // one per vertex, or empty (all 0)
     std::vector<int32_t> fixed;        // fixed vertices
+    std::vector<int32_t> corners;      // the caller's corners
     std::vector<int32_t> feature_edges;  // 2 per feature edge
+    std::vector<int32_t> edge_refs;    // one per feature edge, or empty (all 0)
     // Per-tet values that formats with cell data (VTU) write for viewers:
     // a name and one value per tet.  Never read back.
     struct TetField {

@@ -4,6 +4,7 @@
 #include "common/error.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <limits>
 
 namespace bodt {
@@ -98,7 +99,7 @@ void TetMesh::update_vertex_flags() {
     const int32_t nv = num_vertices();
     vflags.resize(static_cast<size_t>(nv), 0);
     for (int32_t v = 0; v < nv; ++v) {
-        vflags[v] &= kFixed;
+        vflags[v] &= kPinned;
         if (vt_offset[v] == vt_offset[v + 1]) vflags[v] |= kUnused;
     }
     for (int32_t t = 0; t < num_tets(); ++t) {
@@ -181,6 +182,29 @@ int32_t TetMesh::count_surface_faces() const {
     for (int32_t t = 0; t < num_tets(); ++t)
         for (int i = 0; i < 4; ++i) n += is_listed_face(t, i);
     return n;
+}
+
+std::vector<int32_t> TetMesh::vertex_refs() const {
+    const int32_t ninput = num_input_vertices();
+    std::vector<int32_t> refs(static_cast<size_t>(num_vertices()), 0);
+    if (input_vertex_refs.empty()) return refs;
+    std::copy(input_vertex_refs.begin(), input_vertex_refs.begin() + ninput, refs.begin());
+    // A vertex made inside a region from surface vertices (splitting an edge
+    // between two boundary vertices) must not take a boundary condition's
+    // ref, so only parents on the same side count (and still in the mesh).
+    const auto on_surface = [this](int32_t v) { return (vflags[v] & (kOnBoundary | kOnInterface)) != 0; };
+    for (int32_t v = ninput; v < num_vertices(); ++v) {
+        std::optional<int32_t> shared;
+        bool agree = true;
+        for (const Parent& p : new_parents[v - ninput]) {
+            if ((vflags[p.vertex] & kUnused) || on_surface(p.vertex) != on_surface(v)) continue;
+            const int32_t r = input_vertex_refs[p.vertex];
+            if (shared && *shared != r) agree = false;
+            shared = r;
+        }
+        refs[v] = agree && shared ? *shared : 0;
+    }
+    return refs;
 }
 
 double TetMesh::bbox_diagonal() const {

@@ -44,13 +44,17 @@ inline EdgeKey edge_key(int32_t a, int32_t b) {
 inline int32_t edge_first(EdgeKey k) { return static_cast<int32_t>(k >> 32); }
 inline int32_t edge_second(EdgeKey k) { return static_cast<int32_t>(k & 0xffffffffu); }
 using EdgeSet = std::unordered_set<EdgeKey>;
+using EdgeRefs = std::unordered_map<EdgeKey, int32_t>;  // an edge and its reference number
 
 enum VertexFlag : uint8_t {
     kOnBoundary = 1,   // on a face of one tet
     kOnInterface = 2,  // on a face between regions or a marked interior face
     kFixed = 4,        // fixed by the caller
     kUnused = 8,       // in no tet
+    kCorner = 16,      // a corner given by the caller
 };
+// The caller's bits, which the topology does not decide: such vertices never move.
+constexpr uint8_t kPinned = kFixed | kCorner;
 
 // One term of a new vertex's interpolation from the input mesh:
 // value(new) = sum of weight * value(vertex) over its parents.
@@ -75,7 +79,10 @@ public:
     std::vector<int32_t> vt_offset, vt_tets; // CSR: tets of vertex v are vt_tets[vt_offset[v] .. vt_offset[v+1])
     std::vector<uint8_t> vflags;
     std::unordered_map<FaceKey, int32_t, FaceKeyHash> face_markers;
-    EdgeSet feature_edges;  // given by the caller (or a file's ridges)
+    EdgeRefs feature_edges;  // given by the caller (or a file's edges), with their refs
+    // The caller's vertex refs, for the input vertices (empty: all 0); made
+    // vertices take theirs from their parents (vertex_refs()).
+    std::vector<int32_t> input_vertex_refs;
     // Tets (accepted as inverted) whose vertex order is reversed against
     // their neighbours'; empty when there are none.  Faces are oriented by
     // the corrected order, so the surfaces stay consistent.
@@ -90,6 +97,11 @@ public:
     int32_t num_vertices() const { return static_cast<int32_t>(points.size()); }
     int32_t num_tets() const { return static_cast<int32_t>(tets.size()); }
     int32_t num_input_vertices() const { return num_vertices() - static_cast<int32_t>(new_parents.size()); }
+
+    // Every vertex's ref: an input vertex's own; a made vertex's is the one
+    // shared by those of its parents that lie where it lies (on the surface
+    // or inside), 0 when they differ or there are none.
+    std::vector<int32_t> vertex_refs() const;
 
     const Tet& tet(int32_t t) const { return tets[t]; }
     TetPoints tet_points(int32_t t) const {

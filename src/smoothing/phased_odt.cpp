@@ -96,7 +96,7 @@ void PhasedOdt::gather_faces(const TetMesh& mesh, int32_t v) {
 // Sec. 3.4.2: CPT on a line (eq. 3.4 with the edge midpoints, weighted by
 // length), eq. (3.4) on the central angle on an arc or circle.
 bool PhasedOdt::chain_move(const TetMesh& mesh, int32_t v, PlannedMove& move) {
-    if (geometry_.vertex_class(v) != VertexClass::FeatureLine || (mesh.vflags[v] & kFixed)) return false;
+    if (geometry_.vertex_class(v) != VertexClass::FeatureLine || (mesh.vflags[v] & kPinned)) return false;
     const Shape* shape = geometry_.shape_of(v);
     if (!shape) return false;
     scratch_.clear();
@@ -139,7 +139,7 @@ bool PhasedOdt::chain_move(const TetMesh& mesh, int32_t v, PlannedMove& move) {
 // Sec. 3.4.3: 2-D ODT on a plane, or in the development of a cylinder
 // around x's own angle (so the seam never cuts a star).
 bool PhasedOdt::surface_move(const TetMesh& mesh, int32_t v, PlannedMove& move) {
-    if (geometry_.vertex_class(v) != VertexClass::Surface || (mesh.vflags[v] & kFixed)) return false;
+    if (geometry_.vertex_class(v) != VertexClass::Surface || (mesh.vflags[v] & kPinned)) return false;
     const Shape* shape = geometry_.shape_of(v);
     if (!shape || (shape->type != ShapeType::Plane && shape->type != ShapeType::Cylinder)) return false;
     gather_faces(mesh, v);

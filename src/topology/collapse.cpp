@@ -148,7 +148,7 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
     mesh.neighbors(w, around);  // v's former neighbours are now w's
     for (int32_t x : around) {
         if (!mesh.is_feature_edge(v, x)) continue;
-        const bool caller = mesh.erase_feature_edge(v, x);
+        const CallerRef caller = mesh.erase_feature_edge(v, x);
         mesh.add_feature_edge(w, x, caller);
     }
     if (mesh.is_feature_edge(v, w)) mesh.erase_feature_edge(v, w);

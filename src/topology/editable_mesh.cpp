@@ -41,9 +41,9 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
     if (cls_.size() != points_.size())
         throw Error(BODT_ERR_NUMERIC, "internal error: " + std::to_string(cls_.size()) + " vertex classes for " +
                                           std::to_string(points_.size()) + " vertices");
-    fixed_.resize(points_.size());
-    for (size_t v = 0; v < points_.size(); ++v) fixed_[v] = mesh.vflags[v] & kFixed;
-    features_.insert(caller_features_.begin(), caller_features_.end());
+    pins_.resize(points_.size());
+    for (size_t v = 0; v < points_.size(); ++v) pins_[v] = mesh.vflags[v] & kPinned;
+    for (const auto& [key, ref] : caller_features_) features_.insert(key);
     for (int32_t v = input_vertices_; v < num_vertices(); ++v) parents_[v] = mesh.new_parents[v - input_vertices_];
     if (mesh.tet_origin.empty()) {
         origin_.resize(tets_.size());
@@ -67,7 +67,7 @@ std::vector<int32_t> EditableMesh::write_to(TetMesh& mesh) const {
     std::vector<uint8_t> flags(static_cast<size_t>(next), 0);
     for (int32_t v = 0; v < num_vertices(); ++v) {
         if (renumber[v] < 0) continue;
-        flags[renumber[v]] = fixed_[v] ? kFixed : 0;
+        flags[renumber[v]] = pins_[v];
         if (v < input_vertices_) continue;
         mesh.points.push_back(points_[v]);
         mesh.new_parents.push_back(parents_[v]);
@@ -87,8 +87,8 @@ std::vector<int32_t> EditableMesh::write_to(TetMesh& mesh) const {
     for (const auto& [f, m] : markers_)
         mesh.face_markers.emplace(FaceKey::of(renumber[f.v[0]], renumber[f.v[1]], renumber[f.v[2]]), m);
     mesh.feature_edges.clear();
-    for (EdgeKey k : caller_features_)
-        mesh.feature_edges.insert(edge_key(renumber[edge_first(k)], renumber[edge_second(k)]));
+    for (const auto& [k, ref] : caller_features_)
+        mesh.feature_edges.emplace(edge_key(renumber[edge_first(k)], renumber[edge_second(k)]), ref);
     mesh.reversed.clear();
     return renumber;
 }
@@ -217,20 +217,20 @@ int32_t EditableMesh::add_vertex(const Vec3& p, VertexClass cls, Parents parents
     const int32_t v = num_vertices();
     points_.push_back(p);
     cls_.push_back(cls);
-    fixed_.push_back(0);
+    pins_.push_back(0);
     parents_.push_back(std::move(parents));
     vtets_.emplace_back();
-    journal_.push_back({Change::AddVertex, v, {}, 0, Vec3::Zero(), 0, false});
+    journal_.push_back({Change::AddVertex, v, {}, 0, Vec3::Zero(), 0, {}});
     return v;
 }
 
 void EditableMesh::move_vertex(int32_t v, const Vec3& p) {
-    journal_.push_back({Change::MoveVertex, v, {}, 0, points_[v], 0, false});
+    journal_.push_back({Change::MoveVertex, v, {}, 0, points_[v], 0, {}});
     points_[v] = p;
 }
 
 void EditableMesh::set_parents(int32_t v, Parents parents) {
-    journal_.push_back({Change::SetParents, v, {}, 0, Vec3::Zero(), 0, false});
+    journal_.push_back({Change::SetParents, v, {}, 0, Vec3::Zero(), 0, {}});
     old_parents_.push_back(std::move(parents_[v]));
     parents_[v] = std::move(parents);
 }
@@ -242,7 +242,7 @@ int32_t EditableMesh::add_tet(const Tet& q, int32_t region, int32_t origin) {
     regions_.push_back(region);
     origin_.push_back(origin);
     attach(t);
-    journal_.push_back({Change::AddTet, t, {}, 0, Vec3::Zero(), 0, false});
+    journal_.push_back({Change::AddTet, t, {}, 0, Vec3::Zero(), 0, {}});
     return t;
 }
 
@@ -250,34 +250,38 @@ void EditableMesh::remove_tet(int32_t t) {
     detach(t);
     removed_[t] = tets_[t];
     tets_[t] = {-1, -1, -1, -1};
-    journal_.push_back({Change::RemoveTet, t, {}, 0, Vec3::Zero(), 0, false});
+    journal_.push_back({Change::RemoveTet, t, {}, 0, Vec3::Zero(), 0, {}});
 }
 
 void EditableMesh::set_marker(const FaceKey& f, int32_t m) {
     const auto it = markers_.find(f);
-    journal_.push_back({Change::SetMarker, 0, f, it == markers_.end() ? kNoMarker : it->second, Vec3::Zero(), 0, false});
+    journal_.push_back({Change::SetMarker, 0, f, it == markers_.end() ? kNoMarker : it->second, Vec3::Zero(), 0, {}});
     markers_[f] = m;
 }
 
 void EditableMesh::erase_marker(const FaceKey& f) {
     const auto it = markers_.find(f);
     if (it == markers_.end()) return;
-    journal_.push_back({Change::EraseMarker, 0, f, it->second, Vec3::Zero(), 0, false});
+    journal_.push_back({Change::EraseMarker, 0, f, it->second, Vec3::Zero(), 0, {}});
     markers_.erase(it);
 }
 
-void EditableMesh::add_feature_edge(int32_t a, int32_t b, bool caller) {
+void EditableMesh::add_feature_edge(int32_t a, int32_t b, CallerRef caller) {
     const EdgeKey k = edge_key(a, b);
     if (features_.count(k)) return;
     features_.insert(k);
-    if (caller) caller_features_.insert(k);
+    if (caller) caller_features_.emplace(k, *caller);
     journal_.push_back({Change::AddFeature, 0, {}, 0, Vec3::Zero(), k, caller});
 }
 
-bool EditableMesh::erase_feature_edge(int32_t a, int32_t b) {
+CallerRef EditableMesh::erase_feature_edge(int32_t a, int32_t b) {
     const EdgeKey k = edge_key(a, b);
-    if (!features_.erase(k)) return false;
-    const bool caller = caller_features_.erase(k) != 0;
+    if (!features_.erase(k)) return std::nullopt;
+    CallerRef caller;
+    if (const auto it = caller_features_.find(k); it != caller_features_.end()) {
+        caller = it->second;
+        caller_features_.erase(it);
+    }
     journal_.push_back({Change::EraseFeature, 0, {}, 0, Vec3::Zero(), k, caller});
     return caller;
 }
@@ -290,7 +294,7 @@ void EditableMesh::rollback(size_t mark) {
             case Change::AddVertex:
                 points_.pop_back();
                 cls_.pop_back();
-                fixed_.pop_back();
+                pins_.pop_back();
                 parents_.pop_back();
                 vtets_.pop_back();
                 break;
@@ -321,7 +325,7 @@ void EditableMesh::rollback(size_t mark) {
                 break;
             case Change::EraseFeature:
                 features_.insert(e.edge);
-                if (e.caller) caller_features_.insert(e.edge);
+                if (e.caller) caller_features_.emplace(e.edge, *e.caller);
                 break;
         }
     }

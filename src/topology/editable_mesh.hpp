@@ -11,9 +11,13 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <optional>
 #include <vector>
 
 namespace bodt {
+
+// The ref of a feature edge the caller gave; empty for one a mode found.
+using CallerRef = std::optional<int32_t>;
 
 // The tets around an edge (a, b), ordered so that (a, b, ring[i], ring[i+1])
 // is each tet's positive orientation.  A closed ring has as many vertices as
@@ -78,10 +82,11 @@ public:
     void remove_tet(int32_t t);
     void set_marker(const FaceKey& f, int32_t marker);
     void erase_marker(const FaceKey& f);
-    // Feature edges: `caller` marks one the caller gave (kept in the output);
-    // erase returns whether the erased edge was the caller's.
-    void add_feature_edge(int32_t a, int32_t b, bool caller);
-    bool erase_feature_edge(int32_t a, int32_t b);
+    // Feature edges: `caller` holds the ref of one the caller gave (kept in
+    // the output); erase returns the erased edge's, so a split or collapse
+    // hands it on.
+    void add_feature_edge(int32_t a, int32_t b, CallerRef caller);
+    CallerRef erase_feature_edge(int32_t a, int32_t b);
 
     // A mark to roll back to; rollback undoes every change made since.
     size_t checkpoint() const { return journal_.size(); }
@@ -103,21 +108,21 @@ private:
         int32_t old_marker; // SetMarker: the previous one, or INT32_MIN when there was none
         Vec3 old_point;     // MoveVertex
         EdgeKey edge;       // feature edges
-        bool caller;        // feature edges: the caller's
+        CallerRef caller;   // feature edges: the caller's ref, if the caller's
     };
     void detach(int32_t t);
     void attach(int32_t t);
 
     std::vector<Vec3> points_;
     std::vector<VertexClass> cls_;
-    std::vector<uint8_t> fixed_;
+    std::vector<uint8_t> pins_;  // the caller's kPinned bits
     std::vector<Parents> parents_;
     std::vector<Tet> tets_;  // removed: {-1, -1, -1, -1}
     std::vector<Tet> removed_;  // the vertices of a removed tet, for rollback
     std::vector<int32_t> regions_, origin_;
     std::vector<std::vector<int32_t>> vtets_;
     std::unordered_map<FaceKey, int32_t, FaceKeyHash> markers_;
-    EdgeSet caller_features_;  // the caller's feature edges, kept in the output
+    EdgeRefs caller_features_;  // the caller's feature edges and refs, kept in the output
     EdgeSet features_;         // every feature edge the classes came from, plus the caller's
     std::vector<Entry> journal_;
     std::vector<Parents> old_parents_;  // SetParents entries, in order

@@ -76,7 +76,7 @@ int32_t split_edge(EditableMesh& mesh, int32_t a, int32_t b, Vec3 p, const Topol
         mesh.set_marker(FaceKey::of(m, b, c), marker);
     }
     if (mesh.is_feature_edge(a, b)) {
-        const bool caller = mesh.erase_feature_edge(a, b);
+        const CallerRef caller = mesh.erase_feature_edge(a, b);
         mesh.add_feature_edge(a, m, caller);
         mesh.add_feature_edge(m, b, caller);
     }

@@ -16,6 +16,7 @@ import argparse
 import json
 import math
 import os
+import struct
 import random
 import re
 import subprocess
@@ -637,12 +638,50 @@ def case_improve_surface(args):
     with open(obj, "w") as f:
         f.writelines("v %s\n" % v for v in verts)
         f.writelines("f %d %d %d\n" % tuple(face) for face in faces)
-    code, out, err = run(args.bodt, "improve", obj, dst)
-    check(code == 0, "bodt improve %s exited %d: %s" % (obj, code, err))
-    q = quality_json(args, dst)
-    if q is not None:
-        check(abs(q["volume"] - 4.0 / 3.0) <= 1e-12, "OBJ: volume %r, expected 4/3" % q["volume"])
-        check(q["inverted"] == 0, "OBJ: inverted %r" % q["inverted"])
+    # ... and as STL (ASCII and binary: one record per triangle, vertices
+    # repeated) and PLY (ASCII and binary little-endian)
+    xyz = [tuple(float(c) for c in v.split()) for v in verts]
+    tris = [[xyz[i - 1] for i in face] for face in faces]
+    stl_ascii = os.path.join(args.out, "octahedron_ascii.stl")
+    with open(stl_ascii, "w") as f:
+        f.write("solid octahedron\n")
+        for t in tris:
+            f.write("facet normal 0 0 0\nouter loop\n")
+            f.writelines("vertex %r %r %r\n" % p for p in t)
+            f.write("endloop\nendfacet\n")
+        f.write("endsolid octahedron\n")
+    stl_binary = os.path.join(args.out, "octahedron_binary.stl")
+    with open(stl_binary, "wb") as f:
+        f.write(b"binary octahedron".ljust(80, b" ") + struct.pack("<I", len(tris)))
+        for t in tris:
+            f.write(struct.pack("<12fH", 0, 0, 0, *[c for p in t for c in p], 0))
+    ply_header = "ply\nformat %s 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n" \
+                 "element face 8\nproperty list uchar int vertex_indices\nend_header\n"
+    ply_ascii = os.path.join(args.out, "octahedron_ascii.ply")
+    with open(ply_ascii, "w") as f:
+        f.write(ply_header % "ascii")
+        f.writelines("%s\n" % v for v in verts)
+        f.writelines("3 %d %d %d\n" % tuple(i - 1 for i in face) for face in faces)
+    ply_binary = os.path.join(args.out, "octahedron_binary.ply")
+    with open(ply_binary, "wb") as f:
+        f.write((ply_header % "binary_little_endian").encode())
+        for p in xyz:
+            f.write(struct.pack("<3f", *p))
+        for face in faces:
+            f.write(struct.pack("<B3i", 3, *[i - 1 for i in face]))
+    for surface in (obj, stl_ascii, stl_binary, ply_ascii, ply_binary):
+        name = os.path.basename(surface)
+        code, out, err = run(args.bodt, "improve", surface, dst)
+        check(code == 0, "bodt improve %s exited %d: %s" % (surface, code, err))
+        q = quality_json(args, dst)
+        if q is None:
+            continue
+        check(abs(q["volume"] - 4.0 / 3.0) <= 1e-12, "%s: volume %r, expected 4/3" % (name, q["volume"]))
+        check(q["inverted"] == 0, "%s: inverted %r" % (name, q["inverted"]))
+        check(q["boundary_faces"] == 8, "%s: %r boundary faces, expected the 8 of the input" % (name, q["boundary_faces"]))
+        pts, _ = read_medit(dst)
+        for p in xyz:
+            check(p in pts, "%s: surface vertex %r missing from the output" % (name, p))
 
 
 def case_surface_without_tetgen(args):
