@@ -147,11 +147,13 @@ module bodt
   public :: bodt_mesh_create, bodt_mesh_create_ex, bodt_mesh_destroy
   public :: bodt_mesh_read, bodt_mesh_read_ex, bodt_mesh_read_format, bodt_mesh_write, bodt_mesh_write_format
   public :: bodt_mesh_set_regions, bodt_mesh_set_boundary_faces, bodt_mesh_set_fixed_vertices, &
-            bodt_mesh_set_feature_edges
+            bodt_mesh_set_feature_edges, bodt_mesh_set_feature_edges_ex, bodt_mesh_set_corners, &
+            bodt_mesh_set_vertex_refs
   public :: bodt_mesh_get_counts, bodt_mesh_get_vertices, bodt_mesh_get_tets, bodt_mesh_get_regions, &
             bodt_mesh_get_boundary_faces, bodt_mesh_get_fixed_vertices, bodt_mesh_get_feature_edges, &
-            bodt_mesh_get_vertex_classes, bodt_mesh_get_parent_count, bodt_mesh_get_vertex_parents, &
-            bodt_mesh_get_tet_origins
+            bodt_mesh_get_feature_edges_ex, bodt_mesh_get_corners, bodt_mesh_get_vertex_refs, &
+            bodt_mesh_get_index_base, bodt_mesh_get_vertex_classes, bodt_mesh_get_parent_count, &
+            bodt_mesh_get_vertex_parents, bodt_mesh_get_tet_origins
   public :: bodt_dihedral_bin_edges, bodt_mesh_quality, bodt_mesh_tet_quality
   public :: bodt_set_mode, bodt_get_mode, bodt_set_param_int, bodt_set_param_double, &
             bodt_get_param_int, bodt_get_param_double
@@ -220,12 +222,6 @@ module bodt
       integer(c_int) :: status
     end function c_bodt_mesh_write_format
 
-    function c_bodt_mesh_set_regions(mesh, region_ids) bind(c, name='bodt_mesh_set_regions') result(status)
-      import :: c_int, c_int32_t, c_ptr
-      type(c_ptr), value :: mesh
-      integer(c_int32_t), intent(in) :: region_ids(*)
-      integer(c_int) :: status
-    end function c_bodt_mesh_set_regions
     function c_bodt_mesh_set_boundary_faces(mesh, nfaces, triangles, markers) &
         bind(c, name='bodt_mesh_set_boundary_faces') result(status)
       import :: c_int, c_int32_t, c_ptr
@@ -243,14 +239,22 @@ module bodt
       integer(c_int32_t), intent(in) :: vertices(*)
       integer(c_int) :: status
     end function c_bodt_mesh_set_fixed_vertices
-    function c_bodt_mesh_set_feature_edges(mesh, nedges, edges) &
-        bind(c, name='bodt_mesh_set_feature_edges') result(status)
+    function c_bodt_mesh_set_feature_edges_ex(mesh, nedges, edges, refs) &
+        bind(c, name='bodt_mesh_set_feature_edges_ex') result(status)
       import :: c_int, c_int32_t, c_ptr
       type(c_ptr), value :: mesh
       integer(c_int32_t), value :: nedges
       integer(c_int32_t), intent(in) :: edges(*)
+      integer(c_int32_t), intent(in), optional :: refs(*)
       integer(c_int) :: status
-    end function c_bodt_mesh_set_feature_edges
+    end function c_bodt_mesh_set_feature_edges_ex
+    function c_bodt_mesh_set_corners(mesh, ncorners, vertices) bind(c, name='bodt_mesh_set_corners') result(status)
+      import :: c_int, c_int32_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), value :: ncorners
+      integer(c_int32_t), intent(in) :: vertices(*)
+      integer(c_int) :: status
+    end function c_bodt_mesh_set_corners
 
     function c_bodt_mesh_get_counts(mesh, nverts, ntets, nboundary_faces) &
         bind(c, name='bodt_mesh_get_counts') result(status)
@@ -274,15 +278,21 @@ module bodt
       integer(c_size_t), value :: capacity
       integer(c_int) :: status
     end function c_bodt_mesh_get_boundary_faces
-    function c_bodt_mesh_get_feature_edges(mesh, nedges, edges, capacity) &
-        bind(c, name='bodt_mesh_get_feature_edges') result(status)
+    function c_bodt_mesh_get_feature_edges_ex(mesh, nedges, edges, refs, capacity) &
+        bind(c, name='bodt_mesh_get_feature_edges_ex') result(status)
       import :: c_int, c_int32_t, c_size_t, c_ptr
       type(c_ptr), value :: mesh
       integer(c_int32_t), intent(out) :: nedges
-      integer(c_int32_t), intent(out), optional :: edges(*)
+      integer(c_int32_t), intent(out), optional :: edges(*), refs(*)
       integer(c_size_t), value :: capacity
       integer(c_int) :: status
-    end function c_bodt_mesh_get_feature_edges
+    end function c_bodt_mesh_get_feature_edges_ex
+    function c_bodt_mesh_get_index_base(mesh, index_base) bind(c, name='bodt_mesh_get_index_base') result(status)
+      import :: c_int, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int), intent(out) :: index_base
+      integer(c_int) :: status
+    end function c_bodt_mesh_get_index_base
     function c_bodt_mesh_get_parent_count(mesh, count) bind(c, name='bodt_mesh_get_parent_count') result(status)
       import :: c_int, c_int64_t, c_ptr
       type(c_ptr), value :: mesh
@@ -420,8 +430,15 @@ module bodt
     end function c_bodt_mesh_recovery_error
   end interface
 
-  ! The getters of one int32 array: the same C signature, one helper.
+  ! The setters of one int32 per tet or vertex, and the getters of one
+  ! int32 array: the same C signatures, one helper each.
   abstract interface
+    function c_set_ints(mesh, values) bind(c) result(status)
+      import :: c_int, c_int32_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), intent(in) :: values(*)
+      integer(c_int) :: status
+    end function c_set_ints
     function c_get_ints(mesh, values, capacity) bind(c) result(status)
       import :: c_int, c_int32_t, c_size_t, c_ptr
       type(c_ptr), value :: mesh
@@ -430,9 +447,13 @@ module bodt
       integer(c_int) :: status
     end function c_get_ints
   end interface
+  procedure(c_set_ints), bind(c, name='bodt_mesh_set_regions') :: c_bodt_mesh_set_regions
+  procedure(c_set_ints), bind(c, name='bodt_mesh_set_vertex_refs') :: c_bodt_mesh_set_vertex_refs
   procedure(c_get_ints), bind(c, name='bodt_mesh_get_tets') :: c_bodt_mesh_get_tets
   procedure(c_get_ints), bind(c, name='bodt_mesh_get_regions') :: c_bodt_mesh_get_regions
   procedure(c_get_ints), bind(c, name='bodt_mesh_get_fixed_vertices') :: c_bodt_mesh_get_fixed_vertices
+  procedure(c_get_ints), bind(c, name='bodt_mesh_get_corners') :: c_bodt_mesh_get_corners
+  procedure(c_get_ints), bind(c, name='bodt_mesh_get_vertex_refs') :: c_bodt_mesh_get_vertex_refs
   procedure(c_get_ints), bind(c, name='bodt_mesh_get_vertex_classes') :: c_bodt_mesh_get_vertex_classes
   procedure(c_get_ints), bind(c, name='bodt_mesh_get_tet_origins') :: c_bodt_mesh_get_tet_origins
   procedure(c_get_ints), bind(c, name='bodt_mesh_get_geometry_classes') :: c_bodt_mesh_get_geometry_classes
@@ -644,22 +665,38 @@ contains
 
   ! ---------------------------------------------------- optional mesh data
 
+  ! values(ntets) or values(nverts), named `label` in the refusal of
+  ! another size, to the C setter `set`.
+  subroutine set_ints(set, name, label, per_tet, mesh, values, ierr)
+    procedure(c_set_ints) :: set
+    character(len=*), intent(in) :: name, label
+    logical, intent(in) :: per_tet
+    type(bodt_mesh_t), intent(inout) :: mesh
+    integer(c_int32_t), intent(in) :: values(:)
+    integer(c_int), intent(out), optional :: ierr
+    integer(c_int32_t) :: nverts, ntets
+    character(len=80) :: text
+    integer(c_int) :: status
+    status = c_bodt_mesh_get_counts(mesh%ptr, nverts, ntets)
+    if (status == BODT_OK .and. size(values) /= merge(ntets, nverts, per_tet)) then
+      if (per_tet) then
+        write (text, '(2a, i0, a, i0, a)') label, ' has ', size(values), ' values for ', ntets, ' tets'
+      else
+        write (text, '(2a, i0, a, i0, a)') label, ' has ', size(values), ' values for ', nverts, ' vertices'
+      end if
+      call finish(BODT_ERR_INVALID_ARGUMENT, name, mesh, ierr, trim(text))
+    else
+      if (status == BODT_OK) status = set(mesh%ptr, values)
+      call finish(status, name, mesh, ierr)
+    end if
+  end subroutine set_ints
+
   ! One region id per tet.
   subroutine bodt_mesh_set_regions(mesh, region_ids, ierr)
     type(bodt_mesh_t), intent(inout) :: mesh
     integer(c_int32_t), intent(in) :: region_ids(:)
     integer(c_int), intent(out), optional :: ierr
-    integer(c_int32_t) :: ntets
-    character(len=80) :: text
-    integer(c_int) :: status
-    status = c_bodt_mesh_get_counts(mesh%ptr, ntets=ntets)
-    if (status == BODT_OK .and. size(region_ids) /= ntets) then
-      write (text, '(a, i0, a, i0, a)') 'region_ids has ', size(region_ids), ' values for ', ntets, ' tets'
-      call finish(BODT_ERR_INVALID_ARGUMENT, 'bodt_mesh_set_regions', mesh, ierr, trim(text))
-    else
-      if (status == BODT_OK) status = c_bodt_mesh_set_regions(mesh%ptr, region_ids)
-      call finish(status, 'bodt_mesh_set_regions', mesh, ierr)
-    end if
+    call set_ints(c_bodt_mesh_set_regions, 'bodt_mesh_set_regions', 'region_ids', .true., mesh, region_ids, ierr)
   end subroutine bodt_mesh_set_regions
 
   ! triangles(3, nfaces); markers(nfaces), absent: every face gets 1.
@@ -697,14 +734,53 @@ contains
     type(bodt_mesh_t), intent(inout) :: mesh
     integer(c_int32_t), intent(in) :: edges(:, :)
     integer(c_int), intent(out), optional :: ierr
-    character(len=*), parameter :: name = 'bodt_mesh_set_feature_edges'
+    call set_feature_edges('bodt_mesh_set_feature_edges', mesh, edges, ierr=ierr)
+  end subroutine bodt_mesh_set_feature_edges
+
+  ! edges(2, nedges); refs(nedges), absent: every ref 0.
+  subroutine bodt_mesh_set_feature_edges_ex(mesh, edges, refs, ierr)
+    type(bodt_mesh_t), intent(inout) :: mesh
+    integer(c_int32_t), intent(in) :: edges(:, :)
+    integer(c_int32_t), intent(in), optional :: refs(:)
+    integer(c_int), intent(out), optional :: ierr
+    call set_feature_edges('bodt_mesh_set_feature_edges_ex', mesh, edges, refs, ierr)
+  end subroutine bodt_mesh_set_feature_edges_ex
+
+  subroutine set_feature_edges(name, mesh, edges, refs, ierr)
+    character(len=*), intent(in) :: name
+    type(bodt_mesh_t), intent(inout) :: mesh
+    integer(c_int32_t), intent(in) :: edges(:, :)
+    integer(c_int32_t), intent(in), optional :: refs(:)
+    integer(c_int), intent(out), optional :: ierr
     if (size(edges, 1) /= 2) then
       call finish(BODT_ERR_INVALID_ARGUMENT, name, mesh, ierr, &
                   shape_text('edges', shape(edges)) // ', not (2, nedges)')
-    else
-      call finish(c_bodt_mesh_set_feature_edges(mesh%ptr, size(edges, 2), edges), name, mesh, ierr)
+      return
     end if
-  end subroutine bodt_mesh_set_feature_edges
+    if (present(refs)) then
+      if (size(refs) /= size(edges, 2)) then
+        call finish(BODT_ERR_INVALID_ARGUMENT, name, mesh, ierr, &
+                    shape_text('edges', shape(edges)) // ', but refs has another number of edges')
+        return
+      end if
+    end if
+    call finish(c_bodt_mesh_set_feature_edges_ex(mesh%ptr, size(edges, 2), edges, refs), name, mesh, ierr)
+  end subroutine set_feature_edges
+
+  subroutine bodt_mesh_set_corners(mesh, vertices, ierr)
+    type(bodt_mesh_t), intent(inout) :: mesh
+    integer(c_int32_t), intent(in) :: vertices(:)
+    integer(c_int), intent(out), optional :: ierr
+    call finish(c_bodt_mesh_set_corners(mesh%ptr, size(vertices), vertices), 'bodt_mesh_set_corners', mesh, ierr)
+  end subroutine bodt_mesh_set_corners
+
+  ! One ref per vertex.
+  subroutine bodt_mesh_set_vertex_refs(mesh, refs, ierr)
+    type(bodt_mesh_t), intent(inout) :: mesh
+    integer(c_int32_t), intent(in) :: refs(:)
+    integer(c_int), intent(out), optional :: ierr
+    call set_ints(c_bodt_mesh_set_vertex_refs, 'bodt_mesh_set_vertex_refs', 'refs', .false., mesh, refs, ierr)
+  end subroutine bodt_mesh_set_vertex_refs
 
 
   ! -------------------------------------------------------------- getters
@@ -812,15 +888,62 @@ contains
     type(bodt_mesh_t), intent(inout) :: mesh
     integer(c_int32_t), allocatable, intent(out) :: edges(:, :)
     integer(c_int), intent(out), optional :: ierr
+    call get_feature_edges('bodt_mesh_get_feature_edges', mesh, edges, ierr=ierr)
+  end subroutine bodt_mesh_get_feature_edges
+
+  ! edges(2, nedges) and refs(nedges); refs may be left out.
+  subroutine bodt_mesh_get_feature_edges_ex(mesh, edges, refs, ierr)
+    type(bodt_mesh_t), intent(inout) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: edges(:, :)
+    integer(c_int32_t), allocatable, intent(out), optional :: refs(:)
+    integer(c_int), intent(out), optional :: ierr
+    call get_feature_edges('bodt_mesh_get_feature_edges_ex', mesh, edges, refs, ierr)
+  end subroutine bodt_mesh_get_feature_edges_ex
+
+  subroutine get_feature_edges(name, mesh, edges, refs, ierr)
+    character(len=*), intent(in) :: name
+    type(bodt_mesh_t), intent(inout) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: edges(:, :)
+    integer(c_int32_t), allocatable, intent(out), optional :: refs(:)
+    integer(c_int), intent(out), optional :: ierr
     integer(c_int32_t) :: nedges
     integer(c_int) :: status
-    status = c_bodt_mesh_get_feature_edges(mesh%ptr, nedges, capacity=0_c_size_t)
+    status = c_bodt_mesh_get_feature_edges_ex(mesh%ptr, nedges, capacity=0_c_size_t)
     if (status == BODT_OK) then
       allocate (edges(2, nedges))
-      status = c_bodt_mesh_get_feature_edges(mesh%ptr, nedges, edges, size(edges, 2, kind=c_size_t))
+      if (present(refs)) then
+        allocate (refs(nedges))
+        status = c_bodt_mesh_get_feature_edges_ex(mesh%ptr, nedges, edges, refs, size(edges, 2, kind=c_size_t))
+      else
+        status = c_bodt_mesh_get_feature_edges_ex(mesh%ptr, nedges, edges, capacity=size(edges, 2, kind=c_size_t))
+      end if
     end if
-    call finish(status, 'bodt_mesh_get_feature_edges', mesh, ierr)
-  end subroutine bodt_mesh_get_feature_edges
+    call finish(status, name, mesh, ierr)
+  end subroutine get_feature_edges
+
+  ! is_corner(nverts): 1 where the caller made the vertex a corner, else 0.
+  subroutine bodt_mesh_get_corners(mesh, is_corner, ierr)
+    type(bodt_mesh_t), intent(inout) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: is_corner(:)
+    integer(c_int), intent(out), optional :: ierr
+    call get_ints(c_bodt_mesh_get_corners, 'bodt_mesh_get_corners', .false., mesh, is_corner, ierr)
+  end subroutine bodt_mesh_get_corners
+
+  ! refs(nverts).
+  subroutine bodt_mesh_get_vertex_refs(mesh, refs, ierr)
+    type(bodt_mesh_t), intent(inout) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: refs(:)
+    integer(c_int), intent(out), optional :: ierr
+    call get_ints(c_bodt_mesh_get_vertex_refs, 'bodt_mesh_get_vertex_refs', .false., mesh, refs, ierr)
+  end subroutine bodt_mesh_get_vertex_refs
+
+  ! 1 for a handle created or read with the default index_base.
+  subroutine bodt_mesh_get_index_base(mesh, index_base, ierr)
+    type(bodt_mesh_t), intent(inout) :: mesh
+    integer(c_int), intent(out) :: index_base
+    integer(c_int), intent(out), optional :: ierr
+    call finish(c_bodt_mesh_get_index_base(mesh%ptr, index_base), 'bodt_mesh_get_index_base', mesh, ierr)
+  end subroutine bodt_mesh_get_index_base
 
   ! classes(nverts), BODT_VERTEX_* values.
   subroutine bodt_mesh_get_vertex_classes(mesh, classes, ierr)

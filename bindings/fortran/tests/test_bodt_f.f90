@@ -147,13 +147,18 @@ contains
     integer(c_int32_t), allocatable :: tets(:, :), got(:, :), faces1(:, :), faces0(:, :)
     type(bodt_mesh_t) :: one, zero
     integer(c_int32_t) :: nverts, ntets, nfaces
-    integer(c_int) :: ierr
+    integer(c_int) :: ierr, base
 
     call make_box(1, 0.0_c_double, points, tets)
     call bodt_mesh_create(points, tets, one, ierr=ierr)
     call check_status(ierr, BODT_OK, 'create 1-based', one)
     call bodt_mesh_create(points, tets - 1, zero, index_base=0, ierr=ierr)
     call check_status(ierr, BODT_OK, 'create 0-based', zero)
+    call bodt_mesh_get_index_base(one, base)
+    call check(base == 1, 'index base 1 by default')
+    call bodt_mesh_get_index_base(zero, base, ierr)
+    call check_status(ierr, BODT_OK, 'get_index_base', zero)
+    call check(base == 0, 'index base 0 with index_base=0')
     call bodt_mesh_get_counts(one, nverts, ntets, nfaces)
     call check(nverts == 8 .and. ntets == 6 .and. nfaces == 12, 'counts of a cube')
     call bodt_mesh_get_counts(zero, nboundary_faces=nfaces)
@@ -173,15 +178,15 @@ contains
     call bodt_mesh_destroy(zero)
   end subroutine test_index_bases
 
-  ! Regions, face markers, fixed vertices, feature edges and vertex
-  ! classes set and read back, 1-based.
+  ! Regions, face markers, fixed vertices, feature edges with their refs,
+  ! corners, vertex refs and vertex classes set and read back, 1-based.
   subroutine test_getters()
     integer, parameter :: n = 2
     real(c_double), allocatable :: points(:, :)
     integer(c_int32_t), allocatable :: tets(:, :), regions(:), got(:), faces(:, :), again(:, :), markers(:), &
-                                       fixed(:), edges(:, :), classes(:)
+                                       fixed(:), edges(:, :), refs(:), is_corner(:), vertex_refs(:), classes(:)
     type(bodt_mesh_t) :: mesh
-    integer(c_int32_t) :: t, nfaces, centre, corner, face_centre
+    integer(c_int32_t) :: t, v, nfaces, centre, corner, face_centre, edge_middle
     integer(c_int) :: ierr
 
     call make_box(n, 0.0_c_double, points, tets)
@@ -219,6 +224,35 @@ contains
     call check(all(shape(edges) == [2, 2]), 'two feature edges')
     call check(all(edges == reshape([1, box_vertex(n, 1, 0, 0), 1, box_vertex(n, 0, 1, 0)], [2, 2])), &
                'feature edges sorted')
+    call bodt_mesh_get_feature_edges_ex(mesh, edges, refs)
+    call check(all(shape(edges) == [2, 2]) .and. all(refs == 0), 'feature edges set without refs have ref 0')
+
+    ! the same edges with refs: each ref stays with its edge through the sort
+    call bodt_mesh_set_feature_edges_ex(mesh, reshape([1, box_vertex(n, 0, 1, 0), box_vertex(n, 1, 0, 0), 1], &
+                                                      [2, 2]), [6, 5], ierr)
+    call check_status(ierr, BODT_OK, 'feature edges with refs', mesh)
+    call bodt_mesh_get_feature_edges_ex(mesh, edges, refs)
+    call check(all(edges == reshape([1, box_vertex(n, 1, 0, 0), 1, box_vertex(n, 0, 1, 0)], [2, 2])), &
+               'feature edges with refs sorted')
+    call check(size(refs) == 2 .and. all(refs == [5, 6]), 'feature edge refs round trip')
+    call bodt_mesh_get_feature_edges_ex(mesh, again)
+    call check(all(again == edges), 'feature edges without asking for their refs')
+    call bodt_mesh_get_feature_edges(mesh, again)
+    call check(all(again == edges), 'feature edges set with refs, read without')
+
+    ! a corner in the middle of a box edge (a feature-line vertex otherwise)
+    edge_middle = box_vertex(n, 0, n, 1)
+    call bodt_mesh_get_corners(mesh, is_corner)
+    call check(size(is_corner) == (n + 1)**3 .and. all(is_corner == 0), 'no corners yet')
+    call bodt_mesh_set_corners(mesh, [edge_middle])
+    call bodt_mesh_get_corners(mesh, is_corner)
+    call check(is_corner(edge_middle) == 1 .and. sum(is_corner) == 1, 'corners round trip')
+
+    call bodt_mesh_get_vertex_refs(mesh, vertex_refs)
+    call check(size(vertex_refs) == (n + 1)**3 .and. all(vertex_refs == 0), 'vertex refs 0 by default')
+    call bodt_mesh_set_vertex_refs(mesh, [(mod(v, 4) + 10, v = 1, (n + 1)**3)])
+    call bodt_mesh_get_vertex_refs(mesh, vertex_refs)
+    call check(all(vertex_refs == [(mod(v, 4) + 10, v = 1, (n + 1)**3)]), 'vertex refs round trip')
 
     corner = box_vertex(n, n, 0, 0)
     face_centre = box_vertex(n, 0, 1, 1)
@@ -226,11 +260,13 @@ contains
     call check(size(classes) == (n + 1)**3, 'a class per vertex')
     call check(classes(1) == BODT_VERTEX_FIXED .and. classes(centre) == BODT_VERTEX_FIXED, 'fixed vertex class')
     call check(classes(corner) == BODT_VERTEX_CORNER, 'box corner class (B-ODT)')
+    call check(classes(edge_middle) == BODT_VERTEX_CORNER, 'the caller''s corner class (B-ODT)')
     call check(classes(face_centre) == BODT_VERTEX_SURFACE, 'face centre class')
     call bodt_set_mode(mesh, BODT_MODE_ODT, ierr)
     call check_status(ierr, BODT_OK, 'set ODT', mesh)
     call bodt_mesh_get_vertex_classes(mesh, classes)
     call check(classes(corner) == BODT_VERTEX_SURFACE, 'box corner class (ODT: no corners)')
+    call check(classes(edge_middle) == BODT_VERTEX_CORNER, 'the caller''s corner class (ODT)')
     call bodt_mesh_destroy(mesh)
   end subroutine test_getters
 
@@ -336,7 +372,7 @@ contains
   ! made by insertion interpolate input vertices.
   subroutine test_parents_and_origins()
     real(c_double), allocatable :: points(:, :), weights(:)
-    integer(c_int32_t), allocatable :: tets(:, :), parents(:), origins(:)
+    integer(c_int32_t), allocatable :: tets(:, :), parents(:), origins(:), refs(:)
     integer(c_int64_t), allocatable :: offsets(:)
     integer(c_int64_t) :: count
     type(bodt_mesh_t) :: mesh
@@ -356,10 +392,14 @@ contains
     call check(all(origins == [(v, v = 1, nt0)]), 'own origins')
 
     ! a hard jitter and insertion only (no smoothing first): vertices are made
+    call bodt_mesh_set_vertex_refs(mesh, [(7_c_int32_t, v = 1, nv0)])
     call bodt_set_param_int(mesh, BODT_PARAM_OPS, BODT_OP_INSERT)
     call bodt_run(mesh, 5)
     call bodt_mesh_get_counts(mesh, nverts, ntets)
     call check(nverts > nv0 .and. ntets > nt0, 'insertion made vertices and tets')
+    call bodt_mesh_get_vertex_refs(mesh, refs)
+    call check(size(refs) == nverts .and. all(refs(:nv0) == 7), 'input vertices keep their refs')
+    call check(all(refs(nv0 + 1:) == 7 .or. refs(nv0 + 1:) == 0), 'made vertices: their parents'' ref or 0')
     call bodt_mesh_get_vertex_parents(mesh, offsets, parents, weights)
     call check(size(offsets) == nverts + 1 .and. offsets(1) == 0 .and. offsets(nverts + 1) == size(parents), &
                'offsets after insertion')
@@ -384,7 +424,7 @@ contains
   subroutine test_bad_input()
     real(c_double), allocatable :: points(:, :)
     real(c_double), allocatable :: values(:)
-    integer(c_int32_t), allocatable :: tets(:, :), bad(:, :), regions(:)
+    integer(c_int32_t), allocatable :: tets(:, :), bad(:, :), regions(:), is_corner(:)
     type(bodt_mesh_t) :: mesh
     integer(c_int) :: ierr, mode
 
@@ -419,6 +459,20 @@ contains
     call check_status(ierr, BODT_ERR_INVALID_ARGUMENT, '2 markers for 1 triangle refused', mesh)
     call bodt_mesh_set_feature_edges(mesh, reshape([1, 2, 3], [3, 1]), ierr)
     call check_status(ierr, BODT_ERR_INVALID_ARGUMENT, 'edges(3, k) refused', mesh)
+    call bodt_mesh_set_feature_edges_ex(mesh, reshape([1, 2, 3], [3, 1]), [1], ierr)
+    call check_status(ierr, BODT_ERR_INVALID_ARGUMENT, 'edges(3, k) with refs refused', mesh)
+    call bodt_mesh_set_feature_edges_ex(mesh, reshape([1, 2], [2, 1]), [1, 2], ierr)
+    call check_status(ierr, BODT_ERR_INVALID_ARGUMENT, '2 refs for 1 edge refused', mesh)
+    call check_contains(bodt_mesh_last_error(mesh), 'edges has shape (2, 1), but refs has another number of edges', &
+                        'edge refs message')
+    call bodt_mesh_set_corners(mesh, [1, 9], ierr)
+    call check_status(ierr, BODT_ERR_INVALID_ARGUMENT, 'corner 9 of 8 vertices refused', mesh)
+    call check_contains(bodt_mesh_last_error(mesh), 'corner 2 uses vertex 9', 'corner message')
+    call bodt_mesh_get_corners(mesh, is_corner)
+    call check(all(is_corner == 0), 'a refused corner list sets no corner')
+    call bodt_mesh_set_vertex_refs(mesh, [1, 2, 3], ierr)
+    call check_status(ierr, BODT_ERR_INVALID_ARGUMENT, '3 vertex refs for 8 vertices refused', mesh)
+    call check_contains(bodt_mesh_last_error(mesh), 'refs has 3 values for 8 vertices', 'vertex refs message')
     call bodt_mesh_set_fixed_vertices(mesh, [3, 0], ierr)
     call check_status(ierr, BODT_ERR_INVALID_ARGUMENT, 'fixed vertex 0 refused', mesh)
     call check_contains(bodt_mesh_last_error(mesh), 'fixed vertex 2 uses vertex 0', 'fixed vertex message')
@@ -434,10 +488,11 @@ contains
     character(len=*), parameter :: path = 'test_bodt_f.mesh'
     real(c_double), allocatable :: points(:, :), got_points(:, :)
     integer(c_int32_t), allocatable :: tets(:, :), got(:, :), regions(:), faces(:, :), markers(:), &
-                                       got_markers(:), fixed(:), got_fixed(:), edges(:, :)
+                                       got_markers(:), fixed(:), got_fixed(:), edges(:, :), refs(:), &
+                                       is_corner(:), vertex_refs(:)
     type(bodt_mesh_t) :: mesh, back
-    integer(c_int) :: ierr
-    integer(c_int32_t) :: t
+    integer(c_int) :: ierr, base
+    integer(c_int32_t) :: t, v
 
     call make_box(2, 0.15_c_double, points, tets)
     call bodt_mesh_create(points, tets, mesh)
@@ -446,10 +501,14 @@ contains
     call bodt_mesh_get_boundary_faces(mesh, faces)
     call bodt_mesh_set_boundary_faces(mesh, faces(:, 1:2), [5, 6])
     call bodt_mesh_set_fixed_vertices(mesh, [2, 3])
-    call bodt_mesh_set_feature_edges(mesh, reshape([1, 2], [2, 1]))
+    call bodt_mesh_set_feature_edges_ex(mesh, reshape([1, 2], [2, 1]), [4])
+    call bodt_mesh_set_corners(mesh, [1])
+    call bodt_mesh_set_vertex_refs(mesh, [(mod(v, 5), v = 1, int(size(points, 2), c_int32_t))])
     call bodt_mesh_write(mesh, path)
 
     call bodt_mesh_read(path, back, index_base=0)
+    call bodt_mesh_get_index_base(back, base)
+    call check(base == 0, 'index base of a file read with index_base=0')
     call bodt_mesh_get_tets(back, got)
     call check(all(got + 1 == tets), 'tets through the file, read 0-based')
     call bodt_mesh_destroy(back)
@@ -470,8 +529,16 @@ contains
     call bodt_mesh_get_fixed_vertices(mesh, fixed)
     call bodt_mesh_get_fixed_vertices(back, got_fixed)
     call check(all(got_fixed == fixed), 'fixed vertices through the file')
-    call bodt_mesh_get_feature_edges(back, edges)
+    call bodt_mesh_get_feature_edges_ex(back, edges, refs)
     call check(all(shape(edges) == [2, 1]) .and. all(edges(:, 1) == [1, 2]), 'feature edges through the file')
+    call check(all(refs == [4]), 'feature edge refs through the file')
+    call bodt_mesh_get_corners(back, is_corner)
+    call check(is_corner(1) == 1 .and. sum(is_corner) == 1, 'corners through the file')
+    call bodt_mesh_get_vertex_refs(mesh, vertex_refs)
+    call bodt_mesh_get_vertex_refs(back, got_markers)
+    call check(all(got_markers == vertex_refs), 'vertex refs through the file')
+    call bodt_mesh_get_index_base(back, base)
+    call check(base == 1, 'index base of a file read: 1 by default')
     call bodt_mesh_destroy(back)
 
     ! Gmsh 4.1 binary, chosen explicitly (the name says nothing)

@@ -90,7 +90,7 @@ class Mesh:
             byref(handle),
         )
         check(status, None)
-        self._own(handle.value, base)
+        self._own(handle.value)
 
     @classmethod
     def read(
@@ -110,12 +110,11 @@ class Mesh:
         handle = c_void_p()
         check(lib.bodt_mesh_read_format(os.fsencode(path), int32(format, "format"), flags, byref(handle)), None)
         mesh = cls.__new__(cls)
-        mesh._own(handle.value, base)
+        mesh._own(handle.value)
         return mesh
 
-    def _own(self, handle: int, base: int) -> None:
+    def _own(self, handle: int) -> None:
         self._handle_value = handle
-        self._base = base
         self._finalizer = weakref.finalize(self, lib.bodt_mesh_destroy, handle)
 
     # ------------------------------------------------------------ lifetime
@@ -143,7 +142,7 @@ class Mesh:
     def __repr__(self) -> str:
         if self.closed:
             return "<bodt.Mesh (closed)>"
-        return f"<bodt.Mesh {self.num_vertices} vertices, {self.num_tets} tets, base {self._base}>"
+        return f"<bodt.Mesh {self.num_vertices} vertices, {self.num_tets} tets, base {self.base}>"
 
     @property
     def _handle(self) -> int:
@@ -158,8 +157,10 @@ class Mesh:
 
     @property
     def base(self) -> int:
-        """The index base (0 or 1) of every index in and out."""
-        return self._base
+        """The index base (0 or 1) of every index in and out (bodt_mesh_get_index_base)."""
+        base = c_int()
+        self._check(lib.bodt_mesh_get_index_base(self._handle, byref(base)))
+        return base.value
 
     def _counts(self) -> tuple[int, int, int]:
         nverts, ntets, nfaces = c_int32(), c_int32(), c_int32()
@@ -208,20 +209,44 @@ class Mesh:
         self._check(lib.bodt_mesh_get_boundary_faces(self._handle, pointer(triangles), pointer(markers), nfaces))
         return BoundaryFaces(triangles, markers)
 
+    def _flagged(self, function: Callable[..., int]) -> np.ndarray:
+        flags = self._fetch(function, (self.num_vertices,))
+        return (np.flatnonzero(flags) + self.base).astype(np.int32)
+
     @property
     def fixed_vertices(self) -> np.ndarray:
         """The fixed vertices' indices, ascending (from bodt_mesh_get_fixed_vertices' flags)."""
-        flags = self._fetch(lib.bodt_mesh_get_fixed_vertices, (self.num_vertices,))
-        return (np.flatnonzero(flags) + self._base).astype(np.int32)
+        return self._flagged(lib.bodt_mesh_get_fixed_vertices)
+
+    def _feature_edges(self) -> tuple[np.ndarray, np.ndarray]:
+        nedges = c_int32()
+        self._check(lib.bodt_mesh_get_feature_edges_ex(self._handle, byref(nedges), None, None, 0))
+        edges = np.empty((nedges.value, 2), np.int32)
+        refs = np.empty(nedges.value, np.int32)
+        self._check(
+            lib.bodt_mesh_get_feature_edges_ex(self._handle, byref(nedges), pointer(edges), pointer(refs), len(edges))
+        )
+        return edges, refs
 
     @property
     def feature_edges(self) -> np.ndarray:
-        """(nedges, 2) vertex indices of the caller's feature edges, sorted (bodt_mesh_get_feature_edges)."""
-        nedges = c_int32()
-        self._check(lib.bodt_mesh_get_feature_edges(self._handle, byref(nedges), None, 0))
-        edges = np.empty((nedges.value, 2), np.int32)
-        self._check(lib.bodt_mesh_get_feature_edges(self._handle, byref(nedges), pointer(edges), len(edges)))
-        return edges
+        """(nedges, 2) vertex indices of the caller's feature edges, sorted (bodt_mesh_get_feature_edges_ex)."""
+        return self._feature_edges()[0]
+
+    @property
+    def feature_edge_refs(self) -> np.ndarray:
+        """nedges refs of the caller's feature edges, in feature_edges' order (bodt_mesh_get_feature_edges_ex)."""
+        return self._feature_edges()[1]
+
+    @property
+    def corners(self) -> np.ndarray:
+        """The caller's corners' indices, ascending (from bodt_mesh_get_corners' flags)."""
+        return self._flagged(lib.bodt_mesh_get_corners)
+
+    @property
+    def vertex_refs(self) -> np.ndarray:
+        """nverts vertex refs (bodt_mesh_get_vertex_refs)."""
+        return self._fetch(lib.bodt_mesh_get_vertex_refs, (self.num_vertices,))
 
     @property
     def vertex_classes(self) -> np.ndarray:
@@ -275,12 +300,30 @@ class Mesh:
             lib.bodt_mesh_set_fixed_vertices(self._handle, int32(len(fixed), "the number of vertices"), pointer(fixed))
         )
 
-    def set_feature_edges(self, edges: ArrayLike) -> None:
-        """(nedges, 2) feature edges, replacing earlier ones (bodt_mesh_set_feature_edges)."""
+    def set_feature_edges(self, edges: ArrayLike, refs: ArrayLike | None = None) -> None:
+        """(nedges, 2) feature edges, nedges refs or None for all 0 (bodt_mesh_set_feature_edges_ex).
+
+        Replaces earlier feature edges.
+        """
         pairs = index_array(edges, (None, 2), "edges")
+        numbers = None if refs is None else index_array(refs, (len(pairs),), "refs")
         self._check(
-            lib.bodt_mesh_set_feature_edges(self._handle, int32(len(pairs), "the number of edges"), pointer(pairs))
+            lib.bodt_mesh_set_feature_edges_ex(
+                self._handle, int32(len(pairs), "the number of edges"), pointer(pairs), pointer(numbers)
+            )
         )
+
+    def set_corners(self, vertices: ArrayLike) -> None:
+        """The caller's corners, which no mode moves, replacing earlier ones (bodt_mesh_set_corners)."""
+        corners = index_array(vertices, (None,), "vertices")
+        self._check(
+            lib.bodt_mesh_set_corners(self._handle, int32(len(corners), "the number of vertices"), pointer(corners))
+        )
+
+    def set_vertex_refs(self, refs: ArrayLike) -> None:
+        """One ref per vertex (bodt_mesh_set_vertex_refs)."""
+        numbers = index_array(refs, (self.num_vertices,), "refs")
+        self._check(lib.bodt_mesh_set_vertex_refs(self._handle, pointer(numbers)))
 
     # ------------------------------------------------------------ quality
 

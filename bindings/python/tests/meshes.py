@@ -37,6 +37,33 @@ def grid_boundary_axes(n: int) -> np.ndarray:
     return np.sum((grid == 0) | (grid == n), axis=1)
 
 
+def cube_edge_number(p: np.ndarray, q: np.ndarray) -> int:
+    """The number, 1 ... 12, of the cube's edge on which segment pq lies: 1 + 4 axis + 2 c1 + c2.
+
+    ``axis`` is the segment's direction and c1, c2 (0 or 1) are its other two coordinates, in axis order.
+    """
+    axis = int(np.argmax(np.abs(q - p)))
+    others = np.delete(np.stack([p, q]), axis, axis=1)
+    corner = np.round(others[0])
+    assert np.allclose(others, corner, rtol=0, atol=1e-12) and set(corner) <= {0, 1}, f"{p} {q}: off the cube's edges"
+    return int(1 + 4 * axis + 2 * corner[0] + corner[1])
+
+
+def cube_edges(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """box(n)'s 12 n edges on the cube's edges, (12 n, 2), and the cube_edge_number of each."""
+    points, _ = box(n)
+    g = n + 1
+    pairs = []
+    for axis in range(3):
+        others = [g**a for a in range(3) if a != axis]
+        for c1 in (0, n):
+            for c2 in (0, n):
+                first = c1 * others[0] + c2 * others[1]
+                pairs += [(first + t * g**axis, first + (t + 1) * g**axis) for t in range(n)]
+    pairs = np.array(pairs)
+    return pairs, np.array([cube_edge_number(points[a], points[b]) for a, b in pairs])
+
+
 def regular_tet() -> tuple[np.ndarray, np.ndarray]:
     """A regular tet of edge 2 sqrt(2), positively oriented."""
     points = np.array([[1.0, 1, 1], [1, -1, -1], [-1, -1, 1], [-1, 1, -1]])

@@ -107,6 +107,13 @@ class TestConstruction(ErrorAssertions):
             np.testing.assert_array_equal(one.fixed_vertices, [1, 27])
             with self.assertError(bodt.InvalidArgumentError, bodt.Status.INVALID_ARGUMENT):
                 one.set_fixed_vertices([0])
+            one.set_corners([3])
+            np.testing.assert_array_equal(one.corners, [3])
+            with self.assertError(bodt.InvalidArgumentError, bodt.Status.INVALID_ARGUMENT):
+                one.set_corners([0])
+            one.set_feature_edges([[2, 1]], [4])
+            np.testing.assert_array_equal(one.feature_edges, [[1, 2]])
+            np.testing.assert_array_equal(one.feature_edge_refs, [4])
             self.assertAlmostEqual(one.quality().volume, zero.quality().volume, delta=1e-15)
 
     def test_dtypes_and_memory_orders(self):
@@ -255,15 +262,63 @@ class TestMeshData(ErrorAssertions):
 
     def test_feature_edges(self):
         self.assertEqual(self.mesh.feature_edges.shape, (0, 2))
+        self.assertEqual(self.mesh.feature_edge_refs.shape, (0,))
         edges = np.array([[1, 0], [2, 1], [9, 0]])  # along the cube's edges x and z from the origin
         self.mesh.set_feature_edges(edges)
         got = self.mesh.feature_edges
         self.assertEqual(got.shape, (3, 2))
         self.assertEqual({tuple(sorted(e)) for e in got.tolist()}, {tuple(sorted(e)) for e in edges.tolist()})
+        np.testing.assert_array_equal(self.mesh.feature_edge_refs, [0, 0, 0])  # refs None: 0
+        self.mesh.set_feature_edges(edges, np.array([7, 8, 9], np.int64))
+        ref_of_edge = dict(zip(map(tuple, self.mesh.feature_edges.tolist()), self.mesh.feature_edge_refs.tolist()))
+        self.assertEqual(ref_of_edge, {(0, 1): 7, (1, 2): 8, (0, 9): 9})
         self.mesh.set_feature_edges([])
         self.assertEqual(self.mesh.feature_edges.shape, (0, 2))
+        with self.assertRaisesRegex(ValueError, r"refs must have shape \(3,\)"):
+            self.mesh.set_feature_edges(edges, [1, 2])
         with self.assertError(bodt.InvalidArgumentError, bodt.Status.INVALID_ARGUMENT):
             self.mesh.set_feature_edges([[0, 26]])  # the cube's diagonal: no surface edge
+
+    def test_corners(self):
+        self.assertEqual(self.mesh.corners.shape, (0,))
+        middles = [5, 1]  # of two of the cube's edges: feature-line vertices, unless the caller's corners
+        self.mesh.set_corners(np.array(middles, np.int64))
+        np.testing.assert_array_equal(self.mesh.corners, [1, 5])
+        for mode in (bodt.Mode.BODT, bodt.Mode.ODT):
+            self.mesh.mode = mode
+            np.testing.assert_array_equal(self.mesh.vertex_classes[middles], bodt.VertexClass.CORNER, mode.name)
+        with self.assertError(bodt.InvalidArgumentError, bodt.Status.INVALID_ARGUMENT, "27"):
+            self.mesh.set_corners([4, 27])
+        np.testing.assert_array_equal(self.mesh.corners, [1, 5])  # a refused list changes nothing
+        self.mesh.set_corners([])
+        self.assertEqual(self.mesh.corners.shape, (0,))
+
+    def test_vertex_refs(self):
+        np.testing.assert_array_equal(self.mesh.vertex_refs, np.zeros(27))
+        refs = np.arange(27) % 4 + 10
+        self.mesh.set_vertex_refs(refs)
+        np.testing.assert_array_equal(self.mesh.vertex_refs, refs)
+        self.assertEqual(self.mesh.vertex_refs.dtype, np.int32)
+        with self.assertRaisesRegex(ValueError, r"refs must have shape \(27,\)"):
+            self.mesh.set_vertex_refs(refs[:-1])
+
+    def test_refs_carried_over(self):
+        # every input vertex ref 7; feature edges on the cube's edges, each with its cube edge's number
+        self.mesh.set_vertex_refs(np.full(27, 7))
+        edges, numbers = meshes.cube_edges(self.n)
+        self.mesh.set_feature_edges(edges, numbers)
+        # a target density twice the mesh's: edges are split, also feature edges
+        self.mesh.set_target_density([0, 0, 0], [1, 1, 1], np.full((2, 2, 2), 2.0 * self.n))
+        self.mesh.improve(max_steps=3, mode=bodt.Mode.PHASED_ODT)
+        points, got = self.mesh.points, self.mesh.feature_edges
+        self.assertGreater(len(got), len(edges))
+        expected = [meshes.cube_edge_number(points[a], points[b]) for a, b in got]
+        np.testing.assert_array_equal(self.mesh.feature_edge_refs, expected)  # both halves keep the ref
+        refs = self.mesh.vertex_refs
+        self.assertEqual(len(refs), self.mesh.num_vertices)
+        np.testing.assert_array_equal(refs[:27], 7)
+        self.assertTrue(np.all(refs[got] == 7), "made on the surface from surface vertices of ref 7")
+        self.assertTrue(np.all((refs == 7) | (refs == 0)), "a made vertex: its parents' shared ref, or 0")
 
     def test_vertex_classes(self):
         on_faces = meshes.grid_boundary_axes(self.n)
@@ -431,6 +486,9 @@ class TestFiles(ErrorAssertions):
             faces = mesh.boundary_faces().triangles
             mesh.set_boundary_faces(faces[:4], [5, 6, 7, 8])
             mesh.set_fixed_vertices([14])
+            mesh.set_feature_edges([[1, 2], [2, 3]], [3, 4])
+            mesh.set_corners([1])
+            mesh.set_vertex_refs(np.arange(27) % 5)
             mesh.write(path)
         with bodt.Mesh.read(path) as read:
             self.assertEqual(read.base, 0)
@@ -441,11 +499,17 @@ class TestFiles(ErrorAssertions):
             np.testing.assert_array_equal(read_faces.triangles, faces - 1)
             np.testing.assert_array_equal(read_faces.markers[:4], [5, 6, 7, 8])
             np.testing.assert_array_equal(read.fixed_vertices, [13])
+            np.testing.assert_array_equal(read.feature_edges, [[0, 1], [1, 2]])
+            np.testing.assert_array_equal(read.feature_edge_refs, [3, 4])
+            np.testing.assert_array_equal(read.corners, [0])
+            np.testing.assert_array_equal(read.vertex_refs, np.arange(27) % 5)
         with bodt.Mesh.read(path, base=1) as read:
             self.assertEqual(read.base, 1)
             np.testing.assert_array_equal(read.tets, tets + 1)
             np.testing.assert_array_equal(read.boundary_faces().triangles, faces)
             np.testing.assert_array_equal(read.fixed_vertices, [14])
+            np.testing.assert_array_equal(read.feature_edges, [[1, 2], [2, 3]])
+            np.testing.assert_array_equal(read.corners, [1])
         with self.assertRaisesRegex(ValueError, "base is 2, not 0 or 1"):
             bodt.Mesh.read(path, base=2)
 
