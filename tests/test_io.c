@@ -1,12 +1,16 @@
 /*
  * test_io: mesh files through libbodt.so.  Round trips of Medit .mesh and
- * TetGen .node/.ele/.face with regions, face markers and fixed vertices, and
- * of every other readable format (.meshb, .msh 2.2 / 4.1 ASCII / binary,
- * .vtu); VTU quality fields, Abaqus .inp written, not read;
- * hand-written TetGen files numbered from 0 and from 1; a TetGen file in
- * Stellar's negative orientation; malformed files, each refused with
- * BODT_ERR_IO and a message naming the file and line; unknown extensions;
- * unwritable paths.
+ * TetGen .node/.ele/.face with regions, face markers, fixed vertices,
+ * corners, vertex refs and feature edges with refs, and of every other
+ * readable format (.meshb, .msh 2.2 / 4.1 ASCII / binary, .vtu): what a
+ * format carries comes back exactly, what it does not (bodt.h, enum
+ * bodt_format) comes back empty; VTU quality fields, Abaqus .inp written
+ * (with a node set per vertex ref), not read; hand-written TetGen files
+ * numbered from 0 and from 1, with and without node markers; a TetGen file
+ * in Stellar's negative orientation; hand-written Medit files whose every
+ * Edges entry is a feature edge (Ridges checked, adding nothing); malformed
+ * files, each refused with BODT_ERR_IO and a message naming the file and
+ * line; unknown extensions; unwritable paths.
  *
  * Files are written under BODT_TEST_IO_DIR (in the build tree); the
  * malformed ones are written here from string literals.
@@ -91,9 +95,64 @@ static void expect_read_failure(const char *path, int status, const char *file, 
     if (part) assert_contains(msg, part);
 }
 
-/* Everything two handles give must be identical (fixed vertices optional,
- * as a separate check). */
-static void assert_same_mesh(const bodt_mesh *a, const bodt_mesh *b, int compare_fixed) {
+/* What a file format carries besides vertices, tets, regions and face
+ * markers (bodt.h, enum bodt_format). */
+enum {
+    KEEPS_FIXED = 1,       /* fixed vertices */
+    KEEPS_CORNERS = 2,     /* the caller's corners */
+    KEEPS_VERTEX_REFS = 4, /* vertex refs */
+    KEEPS_EDGES = 8,       /* feature edges with their refs */
+    KEEPS_ALL = 15
+};
+
+/* nverts ints from a per-vertex getter. */
+typedef int (*vertex_getter)(const bodt_mesh *, int32_t *, size_t);
+static int32_t *vertex_values(const bodt_mesh *h, vertex_getter get) {
+    int32_t nv = 0;
+    assert_int_equal(bodt_mesh_get_counts(h, &nv, NULL, NULL), BODT_OK);
+    int32_t *values = malloc((size_t)nv * sizeof *values);
+    assert_non_null(values);
+    assert_int_equal(get(h, values, (size_t)nv), BODT_OK);
+    return values;
+}
+
+/* The per-vertex values of `b` equal those of `a` when `keeps`, else they
+ * are all 0 (the format lost them). */
+static void assert_same_per_vertex(const bodt_mesh *a, const bodt_mesh *b, vertex_getter get, int keeps,
+                                   const char *what) {
+    int32_t nv = 0;
+    assert_int_equal(bodt_mesh_get_counts(a, &nv, NULL, NULL), BODT_OK);
+    int32_t *va = vertex_values(a, get), *vb = vertex_values(b, get);
+    for (int32_t v = 0; v < nv; ++v)
+        if (vb[v] != (keeps ? va[v] : 0))
+            fail_msg("%s of vertex %d: %d, expected %d", what, v, vb[v], keeps ? va[v] : 0);
+    free(va), free(vb);
+}
+
+/* The feature edges and refs of `b` equal those of `a` when `keeps`, else
+ * `b` has none. */
+static void assert_same_feature_edges(const bodt_mesh *a, const bodt_mesh *b, int keeps) {
+    int32_t na = -1, nb = -1;
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(a, &na, NULL, NULL, 0), BODT_OK);
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(b, &nb, NULL, NULL, 0), BODT_OK);
+    if (!keeps) {
+        assert_int_equal(nb, 0);
+        return;
+    }
+    assert_int_equal(na, nb);
+    const size_t n = (size_t)na + 1;
+    int32_t *ea = malloc(2 * n * sizeof *ea), *eb = malloc(2 * n * sizeof *eb);
+    int32_t *ra = malloc(n * sizeof *ra), *rb = malloc(n * sizeof *rb);
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(a, &na, ea, ra, n), BODT_OK);
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(b, &nb, eb, rb, n), BODT_OK);
+    assert_memory_equal(ea, eb, 2 * (size_t)na * sizeof *ea); /* sorted by edge */
+    assert_memory_equal(ra, rb, (size_t)na * sizeof *ra);
+    free(ea), free(eb), free(ra), free(rb);
+}
+
+/* Everything two handles give must be identical; of the data in `keeps`
+ * only: without a KEEPS_ bit, `b` must have none of that data. */
+static void assert_same_mesh(const bodt_mesh *a, const bodt_mesh *b, int keeps) {
     int32_t nva, nta, nfa, nvb, ntb, nfb;
     assert_int_equal(bodt_mesh_get_counts(a, &nva, &nta, &nfa), BODT_OK);
     assert_int_equal(bodt_mesh_get_counts(b, &nvb, &ntb, &nfb), BODT_OK);
@@ -117,16 +176,67 @@ static void assert_same_mesh(const bodt_mesh *a, const bodt_mesh *b, int compare
     assert_int_equal(bodt_mesh_get_boundary_faces(b, ib, mb, big), BODT_OK);
     assert_memory_equal(ia, ib, 3 * (size_t)nfa * sizeof *ia);
     assert_memory_equal(ma, mb, (size_t)nfa * sizeof *ma);
-    if (compare_fixed) {
-        assert_int_equal(bodt_mesh_get_fixed_vertices(a, ia, big), BODT_OK);
-        assert_int_equal(bodt_mesh_get_fixed_vertices(b, ib, big), BODT_OK);
-        assert_memory_equal(ia, ib, (size_t)nva * sizeof *ia);
-    }
     free(da), free(db), free(ia), free(ib), free(ma), free(mb);
+    assert_same_per_vertex(a, b, bodt_mesh_get_fixed_vertices, keeps & KEEPS_FIXED, "fixed flag");
+    assert_same_per_vertex(a, b, bodt_mesh_get_corners, keeps & KEEPS_CORNERS, "corner flag");
+    assert_same_per_vertex(a, b, bodt_mesh_get_vertex_refs, keeps & KEEPS_VERTEX_REFS, "vertex ref");
+    assert_same_feature_edges(a, b, keeps & KEEPS_EDGES);
+}
+
+/* Is vertex v at the lowest or highest coordinate of axis a?  Boundary
+ * vertices of tm_make_box are not jittered: exactly 0 or 1. */
+static int on_side(const test_mesh *m, int32_t v, int a) {
+    const double x = m->xyz[3 * v + a];
+    return x == 0.0 || x == 1.0;
+}
+
+/* The axes along which v is on a side of the box: 2 on an edge, 3 at a
+ * corner. */
+static int sides_of(const test_mesh *m, int32_t v) { return on_side(m, v, 0) + on_side(m, v, 1) + on_side(m, v, 2); }
+
+/* The segments of the box's 12 edges (the tet edges whose two ends lie on
+ * the same two sides), each once, with a ref per box edge: 0 along z, else
+ * 100 + 10 * axis + the edge's position (a negative one for one of them).
+ * Returns their number. */
+static int32_t box_edges(const test_mesh *m, int32_t *edges, int32_t *refs, int32_t capacity) {
+    static const int pairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+    int32_t n = 0;
+    for (int32_t t = 0; t < m->ntets; ++t)
+        for (int k = 0; k < 6; ++k) {
+            int32_t a = m->tets[4 * t + pairs[k][0]], b = m->tets[4 * t + pairs[k][1]];
+            if (a > b) {
+                const int32_t swap = a;
+                a = b, b = swap;
+            }
+            if (sides_of(m, a) < 2 || sides_of(m, b) < 2) continue;
+            int along = -1, shared = 0; /* the axis the segment runs along */
+            for (int ax = 0; ax < 3; ++ax) {
+                if (m->xyz[3 * a + ax] != m->xyz[3 * b + ax]) along = ax;
+                else shared += on_side(m, a, ax);
+            }
+            if (along < 0 || shared != 2) continue;
+            int seen = 0;
+            for (int32_t e = 0; e < n && !seen; ++e) seen = edges[2 * e] == a && edges[2 * e + 1] == b;
+            if (seen) continue;
+            assert_true(n < capacity);
+            edges[2 * n] = a, edges[2 * n + 1] = b;
+            int position = 0; /* which of the 4 box edges along `along` */
+            for (int ax = 0, bit = 1; ax < 3; ++ax) {
+                if (ax == along) continue;
+                if (m->xyz[3 * a + ax] == 1.0) position += bit;
+                bit *= 2;
+            }
+            refs[n] = along == 2 ? 0 : 100 + 10 * along + position;
+            if (refs[n] == 113) refs[n] = -113;
+            ++n;
+        }
+    return n;
 }
 
 /* A 3 x 3 x 3 jittered box with two regions (an interface), markers on two
- * boundary faces and on one interior face, and three fixed vertices. */
+ * boundary faces and on one interior face, three fixed vertices, the box's
+ * 8 corners as corners, its 12 edges (36 segments) as feature edges with
+ * refs (0 among them), and vertex refs (0, negative and positive). */
 static bodt_mesh *decorated_box(test_mesh *m) {
     assert_int_equal(tm_make_box(m, 3, 0.2, 2024), 0);
     bodt_mesh *h = NULL;
@@ -150,6 +260,18 @@ static bodt_mesh *decorated_box(test_mesh *m) {
     for (int32_t v = 0; v < m->nverts && nfixed < 3; ++v)
         if (!m->boundary[v]) fixed[nfixed++] = v;
     assert_int_equal(bodt_mesh_set_fixed_vertices(h, 3, fixed), BODT_OK);
+    int32_t corners[8], ncorners = 0;
+    for (int32_t v = 0; v < m->nverts; ++v)
+        if (sides_of(m, v) == 3) corners[ncorners++] = v;
+    assert_int_equal(ncorners, 8);
+    assert_int_equal(bodt_mesh_set_corners(h, 8, corners), BODT_OK);
+    int32_t edges[2 * 36], edge_refs[36];
+    assert_int_equal(box_edges(m, edges, edge_refs, 36), 36);
+    assert_int_equal(bodt_mesh_set_feature_edges_ex(h, 36, edges, edge_refs), BODT_OK);
+    int32_t *vertex_refs = malloc((size_t)m->nverts * sizeof *vertex_refs);
+    for (int32_t v = 0; v < m->nverts; ++v) vertex_refs[v] = v % 4 == 0 ? 0 : (v % 3 - 1) * 1000 + v;
+    assert_int_equal(bodt_mesh_set_vertex_refs(h, vertex_refs), BODT_OK);
+    free(vertex_refs);
     return h;
 }
 
@@ -164,12 +286,12 @@ static void test_medit_roundtrip(void **state) {
     assert_int_equal(bodt_mesh_write(h, path), BODT_OK);
     assert_string_equal(bodt_mesh_last_error(h), "");
     bodt_mesh *back = read_ok(path, 0);
-    assert_same_mesh(h, back, 1);
+    assert_same_mesh(h, back, KEEPS_ALL);
     /* and once more: a file read and written again reads the same */
     const char *again = path_of("roundtrip2.mesh");
     assert_int_equal(bodt_mesh_write(back, again), BODT_OK);
     bodt_mesh *back2 = read_ok(again, 0);
-    assert_same_mesh(h, back2, 1);
+    assert_same_mesh(h, back2, KEEPS_ALL);
     bodt_mesh_destroy(back2);
     bodt_mesh_destroy(back);
     bodt_mesh_destroy(h);
@@ -177,19 +299,24 @@ static void test_medit_roundtrip(void **state) {
 }
 
 /* Every readable format, chosen explicitly (whatever the extension) and by
- * extension: the decorated box comes back the same, fixed vertices
- * included where the format carries them (not TetGen). */
+ * extension: the decorated box comes back the same, with what the format
+ * carries (bodt.h): Medit and VTU everything; TetGen vertex refs only; Gmsh
+ * fixed vertices and feature edges with refs, no vertex refs or corners. */
 static void test_format_roundtrips(void **state) {
     (void)state;
     static const struct {
         int format;
         const char *name;
-        int fixed;
+        int keeps;
     } formats[] = {
-        {BODT_FORMAT_MEDIT, "f.mesh", 1},          {BODT_FORMAT_MEDIT_BINARY, "f.meshb", 1},
-        {BODT_FORMAT_TETGEN, "f.node", 0},         {BODT_FORMAT_GMSH, "f.msh", 1},
-        {BODT_FORMAT_GMSH_BINARY, "fb.msh", 1},    {BODT_FORMAT_GMSH22, "f22.msh", 1},
-        {BODT_FORMAT_GMSH22_BINARY, "fb22.msh", 1}, {BODT_FORMAT_VTU, "f.vtu", 1},
+        {BODT_FORMAT_MEDIT, "f.mesh", KEEPS_ALL},
+        {BODT_FORMAT_MEDIT_BINARY, "f.meshb", KEEPS_ALL},
+        {BODT_FORMAT_TETGEN, "f.node", KEEPS_VERTEX_REFS},
+        {BODT_FORMAT_GMSH, "f.msh", KEEPS_FIXED | KEEPS_EDGES},
+        {BODT_FORMAT_GMSH_BINARY, "fb.msh", KEEPS_FIXED | KEEPS_EDGES},
+        {BODT_FORMAT_GMSH22, "f22.msh", KEEPS_FIXED | KEEPS_EDGES},
+        {BODT_FORMAT_GMSH22_BINARY, "fb22.msh", KEEPS_FIXED | KEEPS_EDGES},
+        {BODT_FORMAT_VTU, "f.vtu", KEEPS_ALL},
     };
     test_mesh m;
     bodt_mesh *h = decorated_box(&m);
@@ -200,12 +327,12 @@ static void test_format_roundtrips(void **state) {
         bodt_mesh *back = NULL;
         if (bodt_mesh_read_format(path, formats[k].format, 0, &back) != BODT_OK)
             fail_msg("reading %s: %s", path, bodt_mesh_last_error(NULL));
-        assert_same_mesh(h, back, formats[k].fixed);
+        assert_same_mesh(h, back, formats[k].keeps);
         bodt_mesh_destroy(back);
         if (formats[k].format == BODT_FORMAT_GMSH_BINARY || formats[k].format == BODT_FORMAT_GMSH22_BINARY)
             continue; /* .msh by extension reads any variant: the same as above */
         back = read_ok(path, 0);
-        assert_same_mesh(h, back, formats[k].fixed);
+        assert_same_mesh(h, back, formats[k].keeps);
         bodt_mesh_destroy(back);
     }
     bodt_mesh_destroy(h);
@@ -231,6 +358,9 @@ static void test_vtu_fields_and_abaqus(void **state) {
     assert_contains(text, "TYPE=C3D4");
     assert_contains(text, "ELSET=REGION_4");
     assert_contains(text, "NAME=MARKER_12");
+    assert_contains(text, "NSET=FIXED");
+    assert_contains(text, "NSET=REF_1\n"); /* vertex 1's ref */
+    assert_contains(text, "NSET=REF_N997"); /* vertex 3's */
     free(text);
     bodt_mesh *back = (bodt_mesh *)&back;
     assert_int_equal(bodt_mesh_read(inp, &back), BODT_ERR_UNSUPPORTED);
@@ -248,7 +378,7 @@ static void test_format_choice(void **state) {
     const char *upper = path_of("UPPER.MESH");
     assert_int_equal(bodt_mesh_write(h, upper), BODT_OK);
     bodt_mesh *back = read_ok(upper, 0);
-    assert_same_mesh(h, back, 1);
+    assert_same_mesh(h, back, KEEPS_ALL);
     bodt_mesh_destroy(back);
     assert_int_equal(bodt_mesh_write_format(h, path_of("x.mesh"), 99), BODT_ERR_INVALID_ARGUMENT);
     assert_contains(bodt_mesh_last_error(h), "unknown format 99");
@@ -277,14 +407,16 @@ static void test_tetgen_roundtrip(void **state) {
     assert_true(file_exists(node) && file_exists(ele) && file_exists(face));
     bodt_mesh *from_node = read_ok(node, 0);
     bodt_mesh *from_ele = read_ok(ele, 0);
-    assert_same_mesh(h, from_node, 0); /* fixed vertices: see the next test */
-    assert_same_mesh(h, from_ele, 0);
+    /* vertex refs only: no fixed vertices (see the next test), corners or
+     * feature edges */
+    assert_same_mesh(h, from_node, KEEPS_VERTEX_REFS);
+    assert_same_mesh(h, from_ele, KEEPS_VERTEX_REFS);
     /* writing to the .ele name writes the same three files */
     const char *ele2 = path_of("roundtrip_e.ele");
     assert_int_equal(bodt_mesh_write(h, ele2), BODT_OK);
     assert_true(file_exists(path_of("roundtrip_e.node")) && file_exists(path_of("roundtrip_e.face")));
     bodt_mesh *from_ele2 = read_ok(ele2, 0);
-    assert_same_mesh(h, from_ele2, 0);
+    assert_same_mesh(h, from_ele2, KEEPS_VERTEX_REFS);
     bodt_mesh_destroy(from_ele2);
     bodt_mesh_destroy(from_node);
     bodt_mesh_destroy(from_ele);
@@ -323,18 +455,20 @@ static void test_tetgen_roundtrip_fixed_vertices(void **state) {
 
 /* The unit cube: node i is corner i (x = bit 0, y = bit 1, z = bit 2), six
  * Kuhn tets around the diagonal 0-7, two regions, the two bottom triangles
- * (0 1 3) and (0 3 2) marked 5. */
+ * (0 1 3) and (0 3 2) marked 5; an attribute and a boundary marker per
+ * node (kNode0Markers). */
 static const char *kNode0 =
     "# unit cube, hand-written\n"
     "8 3 1 1\n"
     "0 0 0 0 0.5 1\n"
-    "1 1 0 0 0.5 1\n"
+    "1 1 0 0 0.5 2\n"
     "2 0 1 0 0.5 1\n"
-    "3 1 1 0 0.5 1\n"
-    "4 0 0 1 0.5 1\n"
+    "3 1 1 0 0.5 -3\n"
+    "4 0 0 1 0.5 0\n"
     "5 1 0 1 0.5 1\n"
     "6 0 1 1 0.5 1\n"
-    "7 1 1 1 0.5 1\n";
+    "7 1 1 1 0.5 70000\n";
+static const int32_t kNode0Markers[8] = {1, 2, 1, -3, 0, 1, 1, 70000};
 static const char *kEle0 =
     "6 4 1\n"
     "0 0 1 3 7 1\n"
@@ -390,7 +524,11 @@ static void test_tetgen_handwritten_bases(void **state) {
     write_text(path_of("cube1.face"), kFace1);
     bodt_mesh *h0 = read_ok(path_of("cube0.ele"), 0);
     bodt_mesh *h1 = read_ok(path_of("cube1.node"), 0);
-    assert_same_mesh(h0, h1, 1);
+    assert_same_mesh(h0, h1, KEEPS_FIXED); /* cube1.node has no markers: no vertex refs */
+    /* cube0.node's boundary markers are the vertex refs */
+    int32_t refs[8];
+    assert_int_equal(bodt_mesh_get_vertex_refs(h0, refs, 8), BODT_OK);
+    assert_memory_equal(refs, kNode0Markers, sizeof refs);
 
     /* what was read, in the handle's base 0 */
     int32_t nv, nt, nbf;
@@ -446,15 +584,15 @@ static void test_tetgen_negative_orientation(void **state) {
     bodt_mesh_destroy(h);
 }
 
-/* A unit cube, hand-written: sections that are skipped, comments, Corners
- * and RequiredVertices. */
+/* A unit cube, hand-written: sections that are skipped, comments, vertex
+ * refs, an edge, Corners and RequiredVertices. */
 static const char cube_mesh[] =
     "MeshVersionFormatted 1\n"
     "# a unit cube, hand-written\n"
     "Dimension\n3\n"
     "Vertices\n8\n"
-    "0 0 0 1\n1 0 0 1\n0 1 0 1\n1 1 0 1\n0 0 1 1\n1 0 1 1\n0 1 1 1\n1 1 1 1\n"
-    "Edges # skipped\n1\n1 2 0\n"
+    "0 0 0 1\n1 0 0 1\n0 1 0 1\n1 1 0 1\n0 0 1 1\n1 0 1 1\n0 1 1 1\n1 1 1 -2\n"
+    "Edges # a feature edge, ref 9\n1\n1 2 9\n"
     "Corners\n1\n1\n"
     "Triangles\n2\n1 2 4 5\n1 4 3 6\n"
     "Tetrahedra\n6\n"
@@ -468,9 +606,19 @@ static void test_medit_handwritten(void **state) {
     const char *path = path_of("cube.mesh");
     write_text(path, cube_mesh);
     bodt_mesh *h = read_ok(path, 0);
-    int32_t fixed[8], regions[6], nbf;
+    int32_t fixed[8], corners[8], refs[8], regions[6], nbf;
     assert_int_equal(bodt_mesh_get_fixed_vertices(h, fixed, 8), BODT_OK);
-    for (int v = 0; v < 8; ++v) assert_int_equal(fixed[v], v == 0 || v == 7);
+    for (int v = 0; v < 8; ++v) assert_int_equal(fixed[v], v == 7); /* RequiredVertices */
+    assert_int_equal(bodt_mesh_get_corners(h, corners, 8), BODT_OK);
+    for (int v = 0; v < 8; ++v) assert_int_equal(corners[v], v == 0); /* Corners */
+    assert_int_equal(bodt_mesh_get_vertex_refs(h, refs, 8), BODT_OK);
+    for (int v = 0; v < 8; ++v) assert_int_equal(refs[v], v == 7 ? -2 : 1);
+    int32_t nedges = -1, edge[2], edge_ref = -1;
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(h, &nedges, edge, &edge_ref, 1), BODT_OK);
+    assert_int_equal(nedges, 1);
+    assert_int_equal(edge[0], 0);
+    assert_int_equal(edge[1], 1);
+    assert_int_equal(edge_ref, 9);
     assert_int_equal(bodt_mesh_get_regions(h, regions, 6), BODT_OK);
     for (int t = 0; t < 6; ++t) assert_int_equal(regions[t], 3);
     assert_int_equal(bodt_mesh_get_counts(h, NULL, NULL, &nbf), BODT_OK);
@@ -521,9 +669,10 @@ static void test_read_one_based(void **state) {
     assert_contains(bodt_mesh_last_error(NULL), "index_base");
 }
 
-/* Medit Ridges (indices into Edges) are the mesh's feature edges; they are
- * written back as Edges + Ridges and survive a round trip.  A ridge that is
- * not one of the edges is a file error with its line. */
+/* Every Medit edge is a feature edge with its ref; Ridges (indices into
+ * Edges) add nothing.  They are written back as Edges + Ridges naming every
+ * edge and survive a round trip.  A ridge that is not one of the edges is a
+ * file error with its line. */
 static void test_medit_ridges(void **state) {
     (void)state;
     const char *kCube =
@@ -532,25 +681,27 @@ static void test_medit_ridges(void **state) {
         "0 0 0 0\n1 0 0 0\n0 1 0 0\n1 1 0 0\n0 0 1 0\n1 0 1 0\n0 1 1 0\n1 1 1 0\n"
         "Tetrahedra\n6\n"
         "1 2 4 8 0\n1 3 7 8 0\n1 5 6 8 0\n1 2 8 6 0\n1 3 8 4 0\n1 5 8 7 0\n"
-        "Edges\n3\n1 2 0\n1 3 0\n4 2 0\n";
+        "Edges\n3\n1 2 0\n1 3 -5\n4 2 6\n";
     const char *path = path_of("ridges.mesh");
     char text[1024];
     snprintf(text, sizeof text, "%sRidges\n2\n1\n3\nEnd\n", kCube);
     write_text(path, text);
     bodt_mesh *h = read_ok(path, 0);
-    int32_t n = -1, edges[4];
-    assert_int_equal(bodt_mesh_get_feature_edges(h, &n, edges, 2), BODT_OK);
-    assert_int_equal(n, 2);
-    const int32_t expected[4] = {0, 1, 1, 3}; /* sorted, 0-based */
+    int32_t n = -1, edges[6], refs[3];
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(h, &n, edges, refs, 3), BODT_OK);
+    assert_int_equal(n, 3);
+    const int32_t expected[6] = {0, 1, 0, 2, 1, 3}; /* sorted, 0-based */
+    const int32_t expected_refs[3] = {0, -5, 6};
     assert_memory_equal(edges, expected, sizeof expected);
+    assert_memory_equal(refs, expected_refs, sizeof expected_refs);
 
     const char *copy = path_of("ridges_copy.mesh");
     assert_int_equal(bodt_mesh_write(h, copy), BODT_OK);
+    char *written = read_text(copy);
+    assert_contains(written, "\nRidges\n3\n1\n2\n3\n");
+    free(written);
     bodt_mesh *back = read_ok(copy, 0);
-    int32_t n2 = -1, edges2[4];
-    assert_int_equal(bodt_mesh_get_feature_edges(back, &n2, edges2, 2), BODT_OK);
-    assert_int_equal(n2, 2);
-    assert_memory_equal(edges2, expected, sizeof expected);
+    assert_same_mesh(h, back, KEEPS_ALL);
     bodt_mesh_destroy(back);
     bodt_mesh_destroy(h);
 

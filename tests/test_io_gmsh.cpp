@@ -7,21 +7,29 @@
 //
 //   round_trip      a 27-vertex, 48-tet mesh with odd coordinates, regions
 //                   (0, 1, 2, -3 interleaved), face markers (0 among them),
-//                   feature edges and fixed vertices, written as 4.1 / 2.2,
-//                   ASCII / binary, from base 0 and base 1, read back:
-//                   coordinates bit-exact, tets, regions, the nonzero
-//                   markers, feature edges and fixed vertices unchanged
+//                   feature edges with refs (20, 0, 20, -4: two runs of one
+//                   ref) and fixed vertices, written as 4.1 / 2.2, ASCII /
+//                   binary, from base 0 and base 1, read back: coordinates
+//                   bit-exact, tets, regions, the nonzero markers, feature
+//                   edges in their order with their refs, fixed vertices
+//                   unchanged; vertex refs and corners are not written;
+//                   without edge refs the edges come back with ref 0 and
+//                   the file has no physical curve
 //   gmsh_files      the four files Gmsh made from tests/data/gmsh/box.geo:
 //                   23 vertices, 48 tets, 24 in region 1 and 24 in region
 //                   2 of volume 1 each, 8 faces with marker 10 on z = 0, one
-//                   feature edge (0,0,0)-(0,0,1), the origin fixed; the four
-//                   read the same
+//                   feature edge (0,0,0)-(0,0,1) with ref 20, the origin
+//                   fixed; the four read the same
 //   sparse_tags     hand-written files with sparse, unordered node tags,
 //                   parametric nodes, skipped quads, unknown 2-D types,
-//                   other sections: renumbered in file order, base 0
+//                   other sections: renumbered in file order, base 0; lines
+//                   with and without a physical tag are feature edges (ref
+//                   the tag, else 0); a 2.2 line listed for two physical
+//                   groups is one edge with the first group's tag
 //   malformed       many corruptions of those files: each an Error with
 //                   BODT_ERR_IO naming the file and a line or byte offset
-//   bad_write       the writer refuses a bad version and bad indices
+//   bad_write       the writer refuses a bad version, bad indices and edge
+//                   refs that do not match the edges in number
 #include "io/gmsh.hpp"
 
 #include "bodt.h"
@@ -120,7 +128,11 @@ MeshData make_mesh(int base) {
     // feature edges along x at y = z = 0 and along z at x = y = 0
     for (int i = 0; i < n; ++i) d.feature_edges.insert(d.feature_edges.end(), {id(i, 0, 0) + base, id(i + 1, 0, 0) + base});
     for (int k = 0; k < n; ++k) d.feature_edges.insert(d.feature_edges.end(), {id(0, 0, k) + base, id(0, 0, k + 1) + base});
+    d.edge_refs = {20, 0, 20, -4};
     d.fixed = {id(0, 0, 0) + base, id(n, n, n) + base, id(n, 0, n) + base};
+    // Gmsh has no place for these: dropped by a write.
+    d.vertex_refs.assign(d.xyz.size() / 3, 6);
+    d.corners = {id(n, n, 0) + base};
     return d;
 }
 
@@ -147,7 +159,11 @@ void check_same(const MeshData& in, const MeshData& out, const char* what) {
     CHECK(out.triangles == tris, "triangles differ (%zu, expected %zu)", out.triangles.size() / 3, tris.size() / 3);
     CHECK(out.tri_markers == markers, "markers differ");
     CHECK(out.feature_edges == rebased(in.feature_edges, in.base, b), "feature edges differ");
+    const std::vector<int32_t> refs =
+        in.edge_refs.empty() ? std::vector<int32_t>(in.feature_edges.size() / 2, 0) : in.edge_refs;
+    CHECK(out.edge_refs == refs, "edge refs differ");
     CHECK(out.fixed == rebased(in.fixed, in.base, b), "fixed vertices differ");
+    CHECK(out.vertex_refs.empty() && out.corners.empty(), "vertex refs or corners from a Gmsh file");
 }
 
 struct Variant {
@@ -172,6 +188,15 @@ void test_round_trip(void** /*state*/) {
                 const std::string again = path + ".again.msh";
                 bodt::write_gmsh(again, bodt::read_gmsh(path), v.version, v.binary);
                 CHECK(slurp(again) == slurp(path), "rewriting what was read changes the file");
+                if (v.version == 41 && !v.binary) {
+                    // a curve per edge ref (-4, 0, 20), a physical group per nonzero one
+                    const std::string text = slurp(path);
+                    CHECK(text.find("$Entities\n3 3 2 4\n") != std::string::npos, "entity counts");
+                    CHECK(text.find("\n1 20 \"edge ref 20\"\n") != std::string::npos &&
+                              text.find("\n1 -4 \"edge ref -4\"\n") != std::string::npos &&
+                              text.find("\n1 0 \"") == std::string::npos,
+                          "physical curves");
+                }
             } catch (const Error& e) {
                 CHECK(false, "%s", e.what());
             }
@@ -182,11 +207,22 @@ void test_round_trip(void** /*state*/) {
     MeshData in = make_mesh(0);
     in.regions.clear();
     in.tri_markers.assign(in.tri_markers.size(), 0);
-    const std::string path = scratch("round_plain.msh");
-    bodt::write_gmsh(path, in, 41, false);
-    const MeshData out = bodt::read_gmsh(path);
-    CHECK(out.regions == std::vector<int32_t>(in.tets.size() / 4, 0), "regions are not all 0");
-    CHECK(out.triangles.empty() && out.tri_markers.empty(), "marker-0 faces were written");
+    in.edge_refs.clear();
+    for (const Variant& v : kVariants) {
+        const std::string path = scratch(std::string("round_plain_") + v.name + ".msh");
+        bodt::write_gmsh(path, in, v.version, v.binary);
+        const MeshData out = bodt::read_gmsh(path);
+        CHECK(out.regions == std::vector<int32_t>(in.tets.size() / 4, 0), "regions are not all 0");
+        CHECK(out.triangles.empty() && out.tri_markers.empty(), "marker-0 faces were written");
+        CHECK(out.feature_edges == rebased(in.feature_edges, in.base, out.base), "%s: feature edges differ", v.name);
+        CHECK(out.edge_refs == std::vector<int32_t>(in.feature_edges.size() / 2, 0), "%s: edge refs are not all 0",
+              v.name);
+    }
+    // Ref-0 edges are in a curve without physical group: the only physical
+    // group is the fixed vertices'.
+    const std::string text = slurp(scratch("round_plain_41_ascii.msh"));
+    CHECK(text.find("$PhysicalNames\n1\n0 1 \"fixed vertices\"\n$EndPhysicalNames") != std::string::npos,
+          "physical groups other than the fixed vertices'");
 }
 
 void test_gmsh_files(void** /*state*/) {
@@ -215,6 +251,7 @@ void test_gmsh_files(void** /*state*/) {
         CHECK(d.tri_markers == std::vector<int32_t>(8, 10), "%zu markers, expected 8 x 10", d.tri_markers.size());
         for (int32_t v : d.triangles) CHECK(d.xyz[3 * (v - 1) + 2] == 0.0, "a marked face vertex off z = 0");
         CHECK(d.feature_edges.size() == 2, "%zu feature edges", d.feature_edges.size() / 2);
+        CHECK(d.edge_refs == std::vector<int32_t>{20}, "the edge ref is not the physical curve 20");
         const double* a = &d.xyz[3 * (d.feature_edges[0] - 1)];
         const double* b = &d.xyz[3 * (d.feature_edges[1] - 1)];
         CHECK(a[0] == 0 && a[1] == 0 && b[0] == 0 && b[1] == 0 && a[2] + b[2] == 1 && a[2] * b[2] == 0,
@@ -226,20 +263,23 @@ void test_gmsh_files(void** /*state*/) {
             first = d;
         } else {
             CHECK(d.xyz == first.xyz && d.tets == first.tets && d.regions == first.regions &&
-                      d.triangles == first.triangles && d.feature_edges == first.feature_edges && d.fixed == first.fixed,
+                      d.triangles == first.triangles && d.feature_edges == first.feature_edges &&
+                      d.edge_refs == first.edge_refs && d.fixed == first.fixed,
                   "differs from %s", names[0]);
         }
     }
 }
 
 // 4.1 ASCII, tags 40, 10, 30, 20, 50 (sparse, unordered), a parametric block,
-// other sections, a quad and an unknown 2-D type skipped.
+// other sections, a quad and an unknown 2-D type skipped; a line on curve 5
+// (not in $Entities: no physical tag) and one on curve 7 (physical -12).
 const char* kSparse41 =
     "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
     "$Comments\nanything $Nodes here\n$EndComments\n"
     "$PhysicalNames\n1\n3 7 \"v $EndPhysicalNames\"\n$EndPhysicalNames\n"
-    "$Entities\n1 0 1 1\n"
+    "$Entities\n1 1 1 1\n"
     "4 0 0 0 1 9\n"
+    "7 0 0 0 1 1 1 1 -12 2 4 -4\n"
     "3 0 0 0 1 1 1 1 7 2 1 -2\n"
     "2 0 0 0 1 1 1 2 4 8 1 3\n"
     "$EndEntities\n"
@@ -248,8 +288,10 @@ const char* kSparse41 =
     "2 3 1 1\n20\n0 0 1 0.5 0.5\n"
     "0 4 0 1\n50\n1 1 1\n"
     "$EndNodes\n"
-    "$Elements\n5 6 1 9\n"
+    "$Elements\n7 8 1 9\n"
     "0 4 15 1\n1 50\n"
+    "1 5 1 1\n6 10 30\n"
+    "1 7 1 1\n7 40 20\n"
     "2 3 2 1\n2 40 10 30\n"
     "2 3 3 1\n3 40 10 30 20\n"
     "2 3 9999 1\n4 1 2 3 and whatever\n"
@@ -257,15 +299,20 @@ const char* kSparse41 =
     "$EndElements\n"
     "$NodeData\n1\n\"x\"\n$EndNodeData\n";
 
-// 2.2 ASCII, tags 7, 3, 5, 1 (unordered), a 6-tag tet and a quad.
+// 2.2 ASCII, tags 7, 3, 5, 1 (unordered), a 6-tag tet and a quad; a line
+// without tags and one with physical tag 8, listed again (reversed) for its
+// second physical group 9.
 const char* kSparse22 =
     "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
     "$Nodes\n4\n7 0 0 0\n3 1 0 0\n5 0 1 0\n1 0 0 1\n$EndNodes\n"
-    "$Elements\n4\n"
+    "$Elements\n7\n"
     "1 4 6 3 1 2 1 2 3 7 3 5 1\n"
     "2 2 2 4 1 7 3 5\n"
     "3 3 2 4 1 7 3 5 1\n"
     "4 2 2 0 1 7 5 1\n"
+    "5 1 0 7 3\n"
+    "6 1 2 8 2 3 5\n"
+    "7 1 2 9 2 5 3\n"
     "$EndElements\n";
 
 void test_sparse_tags(void** /*state*/) {
@@ -286,7 +333,8 @@ void test_sparse_tags(void** /*state*/) {
         CHECK(d.regions == (std::vector<int32_t>{4, 4}), "regions (first physical tag of volume 2)");
         CHECK(d.triangles == (std::vector<int32_t>{0, 1, 2}) && d.tri_markers == std::vector<int32_t>{7}, "triangle");
         CHECK(d.fixed == std::vector<int32_t>{4}, "fixed");
-        CHECK(d.feature_edges.empty(), "feature edges");
+        CHECK(d.feature_edges == (std::vector<int32_t>{1, 2, 0, 3}), "feature edges");
+        CHECK(d.edge_refs == (std::vector<int32_t>{0, -12}), "edge refs: 0 without a physical tag");
     }
     {
         const char* what = "sparse 2.2";
@@ -302,6 +350,8 @@ void test_sparse_tags(void** /*state*/) {
         CHECK(d.tets == (std::vector<int32_t>{0, 1, 2, 3}) && d.regions == std::vector<int32_t>{3}, "tet");
         CHECK(d.triangles == (std::vector<int32_t>{0, 1, 2}) && d.tri_markers == std::vector<int32_t>{4},
               "only the physical triangle");
+        CHECK(d.feature_edges == (std::vector<int32_t>{0, 1, 1, 2}) && d.edge_refs == (std::vector<int32_t>{0, 8}),
+              "both lines once, ref 0 without tags, the first group's tag for the line listed twice");
     }
 }
 
@@ -418,6 +468,14 @@ void test_malformed(void** /*state*/) {
     add("unknown_type22", replaced(a22, "\n1 15 2 30", "\n1 99 2 30"));
     add("second_order_tet22", replaced(a22, " 4 2 1 ", " 11 2 1 "));
     add("element_tags_huge22", replaced(a22, " 4 2 1 ", " 4 200000 1 "));
+    // the line element (a feature edge)
+    add("line_node_out_of_range41", replaced(a41, "\n1 1 1 1\n2 2 1 \n", "\n1 1 1 1\n2 2 99 \n"));
+    add("line_node_missing41", replaced(a41, "\n1 1 1 1\n2 2 1 \n", "\n1 1 1 1\n2 2\n"));
+    add("line_in_volume_block41", replaced(a41, "\n1 1 1 1\n", "\n3 1 1 1\n"));
+    add("line_physical_tag_huge22", replaced(a22, "\n2 1 2 20 1 2 1\n", "\n2 1 2 9999999999 1 2 1\n"));
+    add("line_physical_tag_word22", replaced(a22, "\n2 1 2 20 1 2 1\n", "\n2 1 2 x20 1 2 1\n"));
+    add("curve_physical_tag_huge41", replaced(a41, "1.0000001 1 20 2 2 -1", "1.0000001 1 4294967316 2 2 -1"));
+    add("curve_physical_count_huge41", replaced(a41, "1.0000001 1 20 2 2 -1", "1.0000001 999999999 20 2 2 -1"));
 
     // binary files: patch values at known offsets
     {
@@ -437,6 +495,10 @@ void test_malformed(void** /*state*/) {
         add("b41_element_type", patched<int32_t>(b41, elements + 40, 1234));
         add("b41_element_block_huge", patched<uint64_t>(b41, elements + 44, uint64_t{1} << 45));
         add("b41_element_node_out_of_range", patched<uint64_t>(b41, elements + 60, 1000));
+        // the line block: header at +68, element tag at +88, nodes at +96
+        add("b41_line_type_in_curve", patched<int32_t>(b41, elements + 76, 2));
+        add("b41_line_node_out_of_range", patched<uint64_t>(b41, elements + 96, 24));
+        add("b41_line_node_zero", patched<uint64_t>(b41, elements + 104, 0));
         const size_t entities = b41.find("$Entities\n") + 10;
         add("b41_entities_count_huge", patched<uint64_t>(b41, entities, uint64_t{1} << 40));
         add("b41_missing_end", b41.substr(0, b41.rfind("$EndElements")));
@@ -493,6 +555,15 @@ void test_bad_write(void** /*state*/) {
         CHECK(false, "an out-of-range tet vertex accepted");
     } catch (const Error& e) {
         CHECK(e.status() == BODT_ERR_INVALID_ARGUMENT, "status %d", e.status());
+    }
+    bad = d;
+    bad.edge_refs.pop_back();
+    try {
+        bodt::write_gmsh(scratch("bad_refs.msh"), bad, 22, true);
+        CHECK(false, "edge refs that do not match the edges accepted");
+    } catch (const Error& e) {
+        CHECK(e.status() == BODT_ERR_INVALID_ARGUMENT && std::strstr(e.what(), "one ref per feature edge"), "%s",
+              e.what());
     }
     try {
         bodt::write_gmsh(g_scratch + "/no/such/dir/x.msh", d, 41, false);

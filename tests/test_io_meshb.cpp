@@ -1,25 +1,32 @@
 // test_io_meshb: white-box tests of the Medit binary .meshb reader and writer
 // (src/io/medit_binary.cpp; links bodt_core).
 //
-//   round_trip        random meshes (base 0 and 1, with and without regions)
-//                     written and read back: coordinates bit for bit, tets,
-//                     regions, triangles, markers, fixed vertices, feature
-//                     edges; the header is libMeshb's version 2
+//   round_trip        random meshes (base 0 and 1, with and without regions,
+//                     vertex refs and edge refs) written and read back:
+//                     coordinates bit for bit, tets, regions, triangles,
+//                     markers, vertex refs, fixed vertices, corners, feature
+//                     edges and their refs; the header is libMeshb's version
+//                     2; Ridges lists every edge, Corners and
+//                     RequiredVertices are there only when not empty
 //   ascii_vs_binary   write_medit and write_medit_binary of one MeshData read
 //                     back (read_medit, read_medit_binary) give the same data
 //   versions          files of versions 1 to 4 in both byte orders, built
 //                     here byte by byte by a writer independent of the
 //                     library's, with keywords the reader must skip (an
-//                     unknown code, Normals, empty Quadrilaterals), Corners,
-//                     RequiredVertices, Edges and Ridges
+//                     unknown code, Normals, empty Quadrilaterals), vertex
+//                     refs, Corners, RequiredVertices, Edges (every one a
+//                     feature edge, with its ref) and Ridges (checked, adds
+//                     nothing), also Ridges before Edges
 //   real_file         tests/data/meshb/box2_faces_freefem.meshb, written by
 //                     FreeFem++ (libMeshb): the mesh of tests/data/box2.mesh
 //                     plus its 48 boundary triangles, marked by box face;
 //                     box2_faces_meshio_v3.meshb, the same written by meshio
 //                     (version 3)
-//   malformed         30-odd broken files (truncations, counts, positions,
-//                     indices, NaN, Dimension, code, version, End ...): each
-//                     an Error(BODT_ERR_IO) naming the path and the byte
+//   malformed         40-odd broken files (truncations, counts, positions,
+//                     indices, refs over 32 bits, NaN, Dimension, code,
+//                     version, End ...): each an Error(BODT_ERR_IO) naming
+//                     the path and the byte; the writer refuses refs that do
+//                     not match the vertices or edges in number
 //   truncations       the sample cut at every length: an error before End,
 //                     the full mesh once End's code is there
 //   fuzz              thousands of random byte changes: each file reads or
@@ -174,8 +181,11 @@ bodt::MeshData sample_mesh() {
     d.regions = {3, -4};
     d.triangles = {2, 3, 4, 1, 2, 5};
     d.tri_markers = {7, 8};
-    d.fixed = {1, 5};                // Corners 1, RequiredVertices 5
-    d.feature_edges = {3, 4, 1, 2};  // Ridges 3, 1 of the Edges (1 2) (2 3) (3 4)
+    d.vertex_refs = {0, 0, 0, 0, 99};
+    d.corners = {1};
+    d.fixed = {5};
+    d.feature_edges = {1, 2, 2, 3, 3, 4};  // every edge; Ridges (3, 1) adds nothing
+    d.edge_refs = {0, -7, 5};
     return d;
 }
 
@@ -191,7 +201,8 @@ Gmf sample_file(bool big, int version) {
     for (int v = 0; v < 5; ++v) {
         g.mark("x" + std::to_string(v + 1));
         for (int c = 0; c < 3; ++c) g.real(d.xyz[3 * v + c]);
-        g.integer(v == 4 ? 99 : 0);
+        g.mark("vref" + std::to_string(v + 1));
+        g.integer(d.vertex_refs[v]);
     }
     g.keyword(200, "Unknown");  // not a libMeshb keyword: skipped by position
     for (int k = 0; k < 13; ++k) g.raw(0xA5, 1);
@@ -219,9 +230,12 @@ Gmf sample_file(bool big, int version) {
     g.integer(1);
     g.keyword(5, "Edges");
     g.integer(3);
-    const int edges[3][3] = {{1, 2, 0}, {2, 3, 0}, {3, 4, 5}};
-    for (const auto& e : edges)
-        for (int x : e) g.integer(x);
+    for (int e = 0; e < 3; ++e) {
+        g.mark("edge" + std::to_string(e + 1));
+        for (int c = 0; c < 2; ++c) g.integer(d.feature_edges[2 * e + c]);
+        g.mark("edgeref" + std::to_string(e + 1));
+        g.integer(d.edge_refs[e]);
+    }
     g.keyword(7, "Quadrilaterals");  // empty: skipped
     g.integer(0);
     g.keyword(14, "Ridges");
@@ -231,6 +245,7 @@ Gmf sample_file(bool big, int version) {
     g.integer(1);
     g.keyword(15, "RequiredVertices");
     g.integer(1);
+    g.mark("required1");
     g.integer(5);
     g.end();
     return g;
@@ -242,6 +257,11 @@ std::vector<int32_t> shifted(const std::vector<int32_t>& v, int by) {
     std::vector<int32_t> r(v);
     for (int32_t& x : r) x += by;
     return r;
+}
+
+// Refs as a reader returns them: one per item, 0 for an empty list.
+std::vector<int32_t> refs_or_zeros(const std::vector<int32_t>& refs, size_t n) {
+    return refs.empty() ? std::vector<int32_t>(n, 0) : refs;
 }
 
 // `got` (read from a file, base 1) holds the data of `want` (any base).
@@ -261,19 +281,28 @@ void check_same(const char* what, const bodt::MeshData& got, const bodt::MeshDat
     CHECK(got.regions == regions, "regions differ");
     CHECK(got.triangles == shifted(want.triangles, s), "triangles differ");
     CHECK(got.tri_markers == want.tri_markers, "markers differ");
+    const size_t nv = want.xyz.size() / 3, ne = want.feature_edges.size() / 2;
+    CHECK(refs_or_zeros(got.vertex_refs, nv) == refs_or_zeros(want.vertex_refs, nv), "vertex refs differ");
     CHECK(got.fixed == shifted(want.fixed, s), "fixed vertices differ (%zu, expected %zu)", got.fixed.size(),
           want.fixed.size());
+    CHECK(got.corners == shifted(want.corners, s), "corners differ (%zu, expected %zu)", got.corners.size(),
+          want.corners.size());
     CHECK(got.feature_edges == shifted(want.feature_edges, s), "feature edges differ (%zu, expected %zu)",
           got.feature_edges.size(), want.feature_edges.size());
+    CHECK(refs_or_zeros(got.edge_refs, ne) == refs_or_zeros(want.edge_refs, ne), "edge refs differ");
 }
 
 // A random mesh: random bits for coordinates, random (not necessarily valid)
-// tets; the reader and writer check indices, not geometry.
-bodt::MeshData random_mesh(Bits& r, int base, bool regions) {
+// tets; the reader and writer check indices, not geometry.  `refs`: vertex
+// and edge refs (any int32), else none.
+bodt::MeshData random_mesh(Bits& r, int base, bool regions, bool refs) {
     bodt::MeshData d;
     d.base = base;
     const int nv = 5 + r.below(200), nt = 1 + r.below(300), nf = r.below(100), nfix = r.below(20), ne = r.below(30);
+    const int nc = r.below(10);
     for (int k = 0; k < 3 * nv; ++k) d.xyz.push_back(r.below(4) == 0 ? r.any_double() : (r.below(2001) - 1000) / 7.0);
+    if (refs)
+        for (int v = 0; v < nv; ++v) d.vertex_refs.push_back(r.below(3) == 0 ? static_cast<int32_t>(r.next()) : 0);
     auto vertex = [&] { return static_cast<int32_t>(base + r.below(nv)); };
     for (int t = 0; t < nt; ++t) {
         for (int c = 0; c < 4; ++c) d.tets.push_back(vertex());
@@ -284,8 +313,32 @@ bodt::MeshData random_mesh(Bits& r, int base, bool regions) {
         d.tri_markers.push_back(r.below(9) - 2);
     }
     for (int k = 0; k < nfix; ++k) d.fixed.push_back(vertex());
+    for (int k = 0; k < nc; ++k) d.corners.push_back(vertex());
     for (int k = 0; k < 2 * ne; ++k) d.feature_edges.push_back(vertex());
+    if (refs)
+        for (int e = 0; e < ne; ++e) d.edge_refs.push_back(static_cast<int32_t>(r.next()));
     return d;
+}
+
+// The payloads of the keywords of a little-endian file of version 1 or 2
+// (32-bit positions), as int32 words after each keyword's header, by code.
+std::map<int32_t, std::vector<int32_t>> keyword_words(const Bytes& b) {
+    auto word = [&](size_t at) {
+        int32_t v;
+        std::memcpy(&v, b.data() + at, 4);  // the test machine is little-endian, as in test_versions
+        return v;
+    };
+    std::map<int32_t, std::vector<int32_t>> words;
+    for (size_t at = 8; at + 4 <= b.size();) {
+        const int32_t code = word(at);
+        if (code == 54 || at + 8 > b.size()) break;
+        const size_t next = static_cast<size_t>(word(at + 4));
+        if (next <= at || next > b.size()) break;
+        std::vector<int32_t>& w = words[code];
+        for (size_t p = at + 8; p + 4 <= next; p += 4) w.push_back(word(p));
+        at = next;
+    }
+    return words;
 }
 
 // Runs `f`, which must throw Error(BODT_ERR_IO) with `path`, "byte" and
@@ -314,7 +367,9 @@ void test_round_trip(void**) {
     const char* what = "round_trip";
     Bits r(12345);
     for (int iter = 0; iter < 24; ++iter) {
-        const bodt::MeshData d = random_mesh(r, iter % 2, iter % 3 != 0);
+        bodt::MeshData d = random_mesh(r, iter % 2, iter % 3 != 0, iter % 4 != 0);
+        if (iter == 5) d.corners.clear();
+        if (iter == 6) d.fixed.clear(), d.feature_edges.clear(), d.edge_refs.clear();
         const std::string path = scratch("round_trip.meshb");
         bodt::write_medit_binary(path, d);
         const Bytes b = read_bytes(path);
@@ -327,6 +382,19 @@ void test_round_trip(void**) {
         const unsigned char tail[8] = {54, 0, 0, 0, 0, 0, 0, 0};
         CHECK(std::memcmp(b.data() + b.size() - 8, tail, 8) == 0, "End bytes");
         check_same(what, bodt::read_medit_binary(path), d, true);
+        // Ridges names every edge (1..n), for tools that read only ridges as
+        // feature lines; empty sections are left out.
+        const auto words = keyword_words(b);
+        const int32_t ne = static_cast<int32_t>(d.feature_edges.size() / 2);
+        CHECK(words.count(5) == (ne > 0) && words.count(14) == (ne > 0), "Edges and Ridges written for %d edges", ne);
+        if (ne > 0) {
+            const std::vector<int32_t>& ridges = words.at(14);
+            CHECK(ridges.size() == static_cast<size_t>(ne) + 1 && ridges[0] == ne, "Ridges count");
+            for (int32_t e = 1; e < static_cast<int32_t>(ridges.size()); ++e)
+                CHECK(ridges[static_cast<size_t>(e)] == e, "ridge %d names edge %d", e, ridges[static_cast<size_t>(e)]);
+        }
+        CHECK(words.count(13) == !d.corners.empty(), "Corners written for %zu corners", d.corners.size());
+        CHECK(words.count(15) == !d.fixed.empty(), "RequiredVertices written for %zu", d.fixed.size());
     }
     // The empty sections of a minimal mesh.
     bodt::MeshData one;
@@ -341,7 +409,7 @@ void test_ascii_vs_binary(void**) {
     const char* what = "ascii_vs_binary";
     Bits r(777);
     for (int iter = 0; iter < 8; ++iter) {
-        const bodt::MeshData d = random_mesh(r, iter % 2, true);
+        const bodt::MeshData d = random_mesh(r, iter % 2, true, iter % 4 != 1);
         bodt::write_medit(scratch("same.mesh"), d);
         bodt::write_medit_binary(scratch("same.meshb"), d);
         const bodt::MeshData a = bodt::read_medit(scratch("same.mesh"));
@@ -386,7 +454,37 @@ void test_versions(void**) {
     const bodt::MeshData got = bodt::read_medit_binary(scratch("v1float.meshb"));
     CHECK(got.xyz[4] == static_cast<double>(0.1f), "0.1 in version 1: %.17g", got.xyz[4]);
     CHECK(got.regions.size() == 1 && got.regions[0] == 6, "region");
-    CHECK(got.triangles.empty() && got.fixed.empty() && got.feature_edges.empty(), "no other sections");
+    CHECK(got.triangles.empty() && got.fixed.empty() && got.corners.empty() && got.feature_edges.empty() &&
+              got.edge_refs.empty(),
+          "no other sections");
+    CHECK(got.vertex_refs == std::vector<int32_t>(5, 0), "vertex refs");
+
+    // Ridges before Edges: its indices are checked against every edge of
+    // the file, not only those read so far.
+    g = Gmf(true, 3);
+    g.keyword(3, "Dimension");
+    g.i32(3);
+    g.keyword(4, "Vertices");
+    g.integer(5);
+    for (int v = 0; v < 5; ++v) {
+        for (int c = 0; c < 3; ++c) g.real(d.xyz[3 * v + c]);
+        g.integer(v);
+    }
+    g.keyword(14, "Ridges");
+    g.integer(1);
+    g.integer(2);
+    g.keyword(8, "Tetrahedra");
+    g.integer(1);
+    for (int x : {1, 2, 3, 4, 6}) g.integer(x);
+    g.keyword(5, "Edges");
+    g.integer(2);
+    for (int x : {1, 2, 8, 4, 5, -9}) g.integer(x);
+    g.end();
+    write_bytes(scratch("ridges_first.meshb"), g.b);
+    const bodt::MeshData rf = bodt::read_medit_binary(scratch("ridges_first.meshb"));
+    CHECK(rf.feature_edges == (std::vector<int32_t>{1, 2, 4, 5}) && rf.edge_refs == (std::vector<int32_t>{8, -9}),
+          "edges after Ridges");
+    CHECK(rf.vertex_refs == (std::vector<int32_t>{0, 1, 2, 3, 4}), "vertex refs");
 }
 
 void test_real_file(void**) {
@@ -489,6 +587,16 @@ void test_malformed(void**) {
         {"triangle vertex negative", false, 2, [&](Gmf& g) { set_int(g, "tri2", -3); }, "out of range"},
         {"corner out of range", false, 4, [&](Gmf& g) { set_int(g, "corner1", int64_t{1} << 33); }, "out of range"},
         {"ridge out of range", false, 2, [&](Gmf& g) { set_int(g, "ridge1", 4); }, "ridge 4"},
+        {"ridge 0", true, 4, [&](Gmf& g) { set_int(g, "ridge1", 0); }, "ridge 0"},
+        {"edge vertex past the last", false, 2, [&](Gmf& g) { set_int(g, "edge3", 6); }, "edge vertex 6"},
+        {"edge vertex 0", true, 3, [&](Gmf& g) { set_int(g, "edge2", 0); }, "edge vertex 0"},
+        {"required vertex out of range", false, 1, [&](Gmf& g) { set_int(g, "required1", 7); }, "RequiredVertices 7"},
+        {"vertex reference over 32 bits", false, 4, [&](Gmf& g) { set_int(g, "vref3", int64_t{1} << 35); },
+         "vertex reference"},
+        {"negative vertex reference over 32 bits", true, 4,
+         [&](Gmf& g) { set_int(g, "vref5", -(int64_t{1} << 40)); }, "does not fit in 32 bits"},
+        {"edge reference over 32 bits", true, 4, [&](Gmf& g) { set_int(g, "edgeref2", int64_t{1} << 32); },
+         "edge reference"},
         {"tet reference over 32 bits", false, 4, [&](Gmf& g) { set_int(g, "tetref2", int64_t{1} << 40); }, "32 bits"},
         {"NaN coordinate", false, 2, [&](Gmf& g) { set_real(g, "x2", 1, nan); }, "not finite"},
         {"infinite coordinate", false, 3, [&](Gmf& g) { set_real(g, "x5", 2, -inf); }, "not finite"},
@@ -560,6 +668,15 @@ void test_malformed(void**) {
     bad = sample_mesh();
     bad.tri_markers.pop_back();
     refused(bad, "do not match");
+    bad = sample_mesh();
+    bad.vertex_refs.pop_back();
+    refused(bad, "do not match");
+    bad = sample_mesh();
+    bad.edge_refs.push_back(1);
+    refused(bad, "do not match");
+    bad = sample_mesh();
+    bad.corners.push_back(6);
+    refused(bad, "vertex index 6");
     // An unwritable path.
     try {
         bodt::write_medit_binary(scratch("no_dir/x.meshb"), sample_mesh());

@@ -4,23 +4,31 @@
 //
 //   round trip        a 2x2x2 block of Kuhn cubes (48 tets, base 1) with
 //                     regions (also negative), marked triangles (also an
-//                     interface and a negative marker), feature edges, fixed
-//                     vertices and tet fields: coordinates bit-exact, all the
-//                     mesh data back (base 0); the tet fields decoded from the
-//                     file by this test's own base64 decoder, NaN on non-tets
+//                     interface and a negative marker), feature edges with
+//                     refs (also -1, the tets' filler), vertex refs, fixed
+//                     vertices, corners and tet fields: coordinates
+//                     bit-exact, all the mesh data back (base 0); the tet
+//                     fields decoded from the file by this test's own base64
+//                     decoder, NaN on non-tets; edges without refs come back
+//                     with ref 0, with and without triangles (marker array
+//                     written or not)
 //   hand-written      an ASCII file and binary ones as ParaView / meshio write
 //                     them (Float32 points, Int64 connectivity, UInt8 types,
 //                     UInt32 and UInt64 headers, header and data encoded
-//                     together or separately, comments, CDATA, entities)
+//                     together or separately, comments, CDATA, entities);
+//                     point data ref (Int16) and corner read, absent arrays
+//                     give no vertex refs, no corners, edge ref 0
 //   refusals          appended data, compression, big-endian, hexahedra,
 //                     quadratic tets, polyhedra, several Pieces
-//   malformed         30 broken files: each an Error(BODT_ERR_IO) whose
-//                     message starts with "<path>:<line>: "
+//   malformed         40 broken files (also bad ref, corner and marker
+//                     arrays): each an Error(BODT_ERR_IO) whose message
+//                     starts with "<path>:<line>: "
 //   Abaqus            the .inp parsed back by a small parser here: nodes
 //                     exact when their shortest form fits CalculiX's 20
 //                     characters (else within 5e-15), element volumes positive, ELSETs = regions,
-//                     NSET FIXED, surfaces = the marked triangles with
-//                     Abaqus's C3D4 face numbering, <= 16 entries per line
+//                     NSET FIXED, NSET REF_<r> per nonzero vertex ref (none
+//                     for 0), surfaces = the marked triangles with Abaqus's
+//                     C3D4 face numbering, <= 16 entries per line
 #include "common/error.hpp"
 #include "io/abaqus.hpp"
 #include "io/mesh_io.hpp"
@@ -173,7 +181,8 @@ Tri sorted_tri(int32_t a, int32_t b, int32_t c) {
 }
 
 // Marks the boundary faces (marker by side, x = 0 gets -3) plus one
-// interface face (marker 99); feature edges along x at y = z = 0; fixed corners.
+// interface face (marker 99); feature edges along x at y = z = 0 with refs
+// (-1 among them); fixed vertices, corners and vertex refs (negative too).
 void decorate(bodt::MeshData& d, int n) {
     const int faces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
     std::map<Tri, std::vector<std::array<int32_t, 3>>> count;
@@ -211,9 +220,12 @@ void decorate(bodt::MeshData& d, int n) {
     for (int i = 0; i < n; ++i) {
         d.feature_edges.push_back(i * m * m + d.base);
         d.feature_edges.push_back((i + 1) * m * m + d.base);
+        d.edge_refs.push_back(i % 2 ? -1 : 40 + i);
     }
     const int32_t nv = static_cast<int32_t>(d.xyz.size() / 3);
     d.fixed = {0 + d.base, nv - 1 + d.base, m - 1 + d.base, 0 + d.base};  // a duplicate on purpose
+    d.corners = {n * m * m + d.base, 0 + d.base, n * m * m + d.base};    // a duplicate too
+    for (int32_t v = 0; v < nv; ++v) d.vertex_refs.push_back(v % 4 == 0 ? 0 : v % 3 - 1 + 1000 * (v % 2));
 }
 
 // ------------------------------------------------------------ helpers
@@ -252,18 +264,20 @@ std::string replace(const char* what, std::string s, const std::string& from, co
 }
 
 // A ParaView-style ASCII file: two tets, a marked triangle, a line, a vertex
-// cell; comments, CDATA and an entity on the way.
+// cell; comments, CDATA and an entity on the way.  The ref and corner arrays
+// share the fixed array's line, so that the line numbers the malformed cases
+// check stay those of the file without them.
 const std::string kAscii = R"(<?xml version="1.0"?>
 <!-- hand written, as ParaView would -->
 <VTKFile type="UnstructuredGrid" version="0.1" byte_order="LittleEndian">
   <UnstructuredGrid>
     <Piece NumberOfPoints="5" NumberOfCells="5">
       <PointData Scalars="fixed">
-        <DataArray type="Int32" Name="fixed" format="ascii">1 0 0 0 1</DataArray>
+        <DataArray type="Int32" Name="fixed" format="ascii">1 0 0 0 1</DataArray><DataArray type="Int16" Name="ref" format="ascii">0 -5 2 0 7</DataArray><DataArray type="UInt8" Name="corner" format="ascii">0 1 0 0 0</DataArray>
       </PointData>
       <CellData>
         <DataArray type="Int32" Name="region" format="ascii">3 4 -1 -1 -1</DataArray>
-        <DataArray type="Int32" Name="marker" format="ascii">-1 -1 7 -1 -1</DataArray>
+        <DataArray type="Int32" Name="marker" format="ascii">-1 -1 7 12 -1</DataArray>
         <DataArray type="Float32" Name="q &amp; a" format="ascii">0.5 0.25 nan nan nan</DataArray>
       </CellData>
       <Points>
@@ -296,7 +310,10 @@ void check_ascii_mesh(const char* what, const bodt::MeshData& d) {
     CHECK((d.triangles == std::vector<int32_t>{0, 1, 3}), "triangles");
     CHECK((d.tri_markers == std::vector<int32_t>{7}), "markers");
     CHECK((d.feature_edges == std::vector<int32_t>{0, 3}), "feature edges");
+    CHECK((d.edge_refs == std::vector<int32_t>{12}), "edge refs");
     CHECK((d.fixed == std::vector<int32_t>{0, 4}), "fixed");
+    CHECK((d.vertex_refs == std::vector<int32_t>{0, -5, 2, 0, 7}), "vertex refs");
+    CHECK((d.corners == std::vector<int32_t>{1}), "corners");
 }
 
 // A binary file like ParaView's: Float32 points, Int64 connectivity and
@@ -366,6 +383,11 @@ void test_round_trip(void**) {
     for (int32_t v : d.fixed) fixed0.insert(v - 1);
     CHECK(std::set<int32_t>(r.fixed.begin(), r.fixed.end()) == fixed0 && r.fixed.size() == fixed0.size(),
           "fixed differ");
+    CHECK(r.edge_refs == d.edge_refs, "edge refs differ");
+    CHECK(r.vertex_refs == d.vertex_refs, "vertex refs differ");
+    std::set<int32_t> corners0;
+    for (int32_t v : d.corners) corners0.insert(v - 1);
+    CHECK(r.corners == std::vector<int32_t>(corners0.begin(), corners0.end()), "corners differ (sorted, each once)");
     CHECK(r.tet_fields.empty(), "tet fields are not read back");
 
     // The tet fields, decoded from the file by this test's own decoder.
@@ -392,8 +414,9 @@ void test_round_trip(void**) {
     }
     CHECK(text.find("Name=\"a&lt;b &amp; &quot;c&quot;\"") != std::string::npos, "field name not escaped");
     CHECK(text.find("Name=\"region\"") != std::string::npos && text.find("Name=\"marker\"") != std::string::npos &&
-              text.find("Name=\"fixed\"") != std::string::npos,
-          "region / marker / fixed arrays missing");
+              text.find("Name=\"fixed\"") != std::string::npos && text.find("Name=\"corner\"") != std::string::npos &&
+              text.find("Int32\" Name=\"ref\"") != std::string::npos,
+          "region / marker / fixed / corner / ref arrays missing");
 
     // Writing what was read gives the same file minus the fields; a bare mesh too.
     bodt::MeshData bare;
@@ -402,8 +425,25 @@ void test_round_trip(void**) {
     bodt::write_vtu(scratch("bare.vtu"), bare);
     const bodt::MeshData b = bodt::read_vtu(scratch("bare.vtu"));
     CHECK(b.xyz == bare.xyz && b.tets == bare.tets, "bare mesh differs");
-    CHECK(b.regions.empty() && b.triangles.empty() && b.fixed.empty() && b.feature_edges.empty(),
+    CHECK(b.regions.empty() && b.triangles.empty() && b.fixed.empty() && b.feature_edges.empty() &&
+              b.edge_refs.empty() && b.vertex_refs.empty() && b.corners.empty(),
           "bare mesh gained data");
+
+    // Edges without refs: ref 0, whether a marker array is written (for
+    // triangles) or not.
+    bodt::MeshData plain_edges = r;
+    plain_edges.edge_refs.clear();
+    for (int with_triangles = 0; with_triangles < 2; ++with_triangles) {
+        if (!with_triangles) plain_edges.triangles.clear(), plain_edges.tri_markers.clear();
+        bodt::write_vtu(scratch("plain_edges.vtu"), plain_edges);
+        const bodt::MeshData e = bodt::read_vtu(scratch("plain_edges.vtu"));
+        CHECK(e.feature_edges == plain_edges.feature_edges, "edges without refs differ");
+        CHECK(e.edge_refs == std::vector<int32_t>(plain_edges.feature_edges.size() / 2, 0), "edge refs are not 0");
+        CHECK(e.tri_markers == plain_edges.tri_markers, "markers differ");
+        CHECK((read_text(scratch("plain_edges.vtu")).find("Name=\"marker\"") != std::string::npos) ==
+                  !plain_edges.triangles.empty(),
+              "marker array written %s triangles", with_triangles ? "with" : "without");
+    }
 
     // Inconsistent MeshData is an argument error.
     bodt::MeshData bad = d;
@@ -422,6 +462,23 @@ void test_round_trip(void**) {
     } catch (const bodt::Error& e) {
         CHECK(e.status() == BODT_ERR_INVALID_ARGUMENT, "status %d", e.status());
     }
+    const auto refused = [&](const bodt::MeshData& m, const char* expect) {
+        try {
+            bodt::write_vtu(scratch("bad.vtu"), m);
+            CHECK(false, "written, expected '%s'", expect);
+        } catch (const bodt::Error& e) {
+            CHECK(e.status() == BODT_ERR_INVALID_ARGUMENT && std::strstr(e.what(), expect), "%s", e.what());
+        }
+    };
+    bad = d;
+    bad.vertex_refs.pop_back();
+    refused(bad, "vertex_refs");
+    bad = d;
+    bad.edge_refs.push_back(3);
+    refused(bad, "edge_refs");
+    bad = d;
+    bad.corners.push_back(0);  // base 1
+    refused(bad, "vertex 0 is out of range");
 }
 
 void test_hand_written(void**) {
@@ -443,7 +500,9 @@ void test_hand_written(void**) {
             CHECK((d.triangles == std::vector<int32_t>{0, 1, 3}), "triangles");
             CHECK((d.tri_markers == std::vector<int32_t>{0}), "markers");
             CHECK((d.feature_edges == std::vector<int32_t>{0, 3}), "feature edges");
+            CHECK((d.edge_refs == std::vector<int32_t>{0}), "edge refs without a marker array");
             CHECK((d.fixed == std::vector<int32_t>{0, 4}), "fixed");
+            CHECK(d.vertex_refs.empty() && d.corners.empty(), "vertex refs or corners without their arrays");
         }
     // Single-quoted attributes, a BOM, self-closing empty PointData.
     std::string s = "\xEF\xBB\xBF" + replace(what, kAscii, "format=\"ascii\">10 10 5 3 1", "format='ascii'>10 10 5 3 1");
@@ -497,7 +556,7 @@ void test_malformed(void**) {
         return expect_malformed(what, name, text, needle);
     };
     bad("empty.vtu", "", "no element");
-    bad("truncated.vtu", kAscii.substr(0, kAscii.size() / 2), "is not closed");
+    bad("truncated.vtu", kAscii.substr(0, kAscii.find("<Points>")), "is not closed");
     bad("truncated_tag.vtu", kAscii.substr(0, kAscii.find("NumberOfCells") + 3), "unexpected end of file");
     bad("truncated_attr.vtu", kAscii.substr(0, kAscii.find("NumberOfCells=\"5") + 16), "unexpected end of file");
     long line = bad("mismatch.vtu", replace(what, kAscii, "</Points>", "</Point>"), "does not match <Points>");
@@ -563,6 +622,26 @@ void test_malformed(void**) {
     bad("doctype.vtu", "<!DOCTYPE x>\n" + kAscii, "DOCTYPE");
     bad("tuples.vtu", replace(what, kAscii, "Name=\"fixed\"", "Name=\"fixed\" NumberOfTuples=\"4\""),
         "NumberOfTuples 4");
+    bad("ref_size.vtu", replace(what, kAscii, "0 -5 2 0 7", "0 -5 2 0"), "ref array has 4 values for 5 points");
+    bad("ref_float.vtu", replace(what, kAscii, "type=\"Int16\" Name=\"ref\"", "type=\"Float32\" Name=\"ref\""),
+        "ref array must be of an integer type");
+    bad("ref_64bit.vtu",
+        replace(what, replace(what, kAscii, "type=\"Int16\" Name=\"ref\"", "type=\"Int64\" Name=\"ref\""),
+                "0 -5 2 0 7", "0 -5 4294967296 0 7"),
+        "ref value 4294967296 does not fit in 32 bits");
+    bad("ref_range.vtu", replace(what, kAscii, "0 -5 2 0 7", "0 -5 2 0 40000"), "does not fit in Int16");
+    bad("ref_twice.vtu",
+        replace(what, kAscii, "</PointData>", "<DataArray type=\"Int32\" Name=\"ref\" format=\"ascii\"/></PointData>"),
+        "a second DataArray ref");
+    bad("corner_components.vtu",
+        replace(what, kAscii, "Name=\"corner\"", "Name=\"corner\" NumberOfComponents=\"5\""),
+        "corner array must have 1 component");
+    bad("corner_word.vtu", replace(what, kAscii, "0 1 0 0 0", "0 1 0 x 0"), "expected an integer, found 'x'");
+    bad("marker_size.vtu", replace(what, kAscii, "-1 -1 7 12 -1", "-1 -1 7 12"), "marker array has 4 values");
+    bad("marker_64bit.vtu",
+        replace(what, replace(what, kAscii, "type=\"Int32\" Name=\"marker\"", "type=\"Int64\" Name=\"marker\""),
+                "-1 -1 7 12 -1", "-1 -1 7 -2147483649 -1"),
+        "marker value -2147483649 does not fit in 32 bits");
     CHECK(n >= 12, "only %d malformed cases", n);
 
     // A missing file: an IO error naming it.
@@ -728,6 +807,15 @@ void test_abaqus(void**) {
     std::sort(fixed.begin(), fixed.end());
     fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
     CHECK(inp.nsets.count("FIXED") && inp.nsets.at("FIXED") == fixed, "NSET FIXED");
+    // REF_<r>: the nodes of each nonzero vertex ref, and no other node set.
+    std::map<std::string, std::vector<long>> ref_sets;
+    for (size_t v = 0; v < nv; ++v)
+        if (d.vertex_refs[v] != 0) ref_sets["REF_" + abaqus_id(d.vertex_refs[v])].push_back(static_cast<long>(v) + 1);
+    CHECK(ref_sets.size() >= 3 && ref_sets.count("REF_N1"), "test mesh lacks vertex refs, a negative one among them");
+    CHECK(inp.nsets.size() == ref_sets.size() + 1, "%zu node sets for %zu refs and FIXED", inp.nsets.size(),
+          ref_sets.size());
+    for (const auto& [name, nodes] : ref_sets)
+        CHECK(inp.nsets.count(name) && inp.nsets.at(name) == nodes, "NSET %s", name.c_str());
     // Surfaces: each face's nodes (Abaqus C3D4 numbering) are a marked triangle.
     const int face_nodes[4][3] = {{1, 2, 3}, {1, 4, 2}, {2, 4, 3}, {3, 4, 1}};
     std::map<int32_t, std::set<Tri>> marked;

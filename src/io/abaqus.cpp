@@ -1,4 +1,7 @@
-// Abaqus / CalculiX .inp writer: see abaqus.hpp.
+// Abaqus / CalculiX .inp writer: see abaqus.hpp.  Besides NSET FIXED, one
+// node set REF_<r> per nonzero vertex ref r (REF_N<r> for a negative one):
+// the nodes a boundary condition given on the Medit / TetGen vertex refs
+// applies to.  Ref 0 means "no ref" and gets no set.
 #include "io/abaqus.hpp"
 
 #include "io/output_file.hpp"
@@ -73,6 +76,7 @@ void write_abaqus(const std::string& path, const MeshData& d) {
         invalid("an array size is not a multiple of its record size");
     if (!d.regions.empty() && d.regions.size() != nt) invalid("regions must have one value per tet");
     if (d.tri_markers.size() != nf) invalid("tri_markers must have one value per triangle");
+    if (!d.vertex_refs.empty() && d.vertex_refs.size() != nv) invalid("vertex_refs must have one value per vertex");
     const int64_t base = d.base;
     auto node = [&](int32_t v) {
         const int64_t i = static_cast<int64_t>(v) - base;
@@ -147,6 +151,14 @@ void write_abaqus(const std::string& path, const MeshData& d) {
         std::sort(ids.begin(), ids.end());
         ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
         std::fprintf(o, "*NSET, NSET=FIXED\n");
+        write_list(o, ids);
+    }
+    // Per nonzero vertex ref, its nodes (in increasing order).
+    std::map<int32_t, std::vector<int64_t>> by_ref;
+    for (size_t v = 0; v < d.vertex_refs.size(); ++v)
+        if (d.vertex_refs[v] != 0) by_ref[d.vertex_refs[v]].push_back(static_cast<int64_t>(v) + 1);
+    for (const auto& [ref, ids] : by_ref) {
+        std::fprintf(o, "*NSET, NSET=REF_%s\n", id_name(ref).c_str());
         write_list(o, ids);
     }
 

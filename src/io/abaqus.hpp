@@ -14,6 +14,8 @@
 //                                       (without regions: one block, ELSET=ALL)
 //   *ELSET, ELSET=ALL, GENERATE         every element (with regions)
 //   *NSET, NSET=FIXED                   the fixed vertices, if any
+//   *NSET, NSET=REF_<r>                 per non-zero vertex ref r, its nodes
+//                                       (REF_N<r> for a negative r)
 //   *ELSET, ELSET=MARKER_<m>_S<k>       per face marker m and C3D4 face k: the
 //   *SURFACE, TYPE=ELEMENT, NAME=MARKER_<m>   elements whose face k is marked m;
 //     MARKER_<m>_S<k>, S<k>             the surface lists those sets

@@ -21,6 +21,7 @@
 #include <map>
 #include <sstream>
 #include <string_view>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -550,7 +551,7 @@ private:
                 }
                 break;
             case kLine:
-                if (physical != 0) d_.feature_edges.insert(d_.feature_edges.end(), v_, v_ + 2);
+                add_line(physical);
                 break;
             case kPoint:
                 if (physical != 0) d_.fixed.push_back(v_[0]);
@@ -558,6 +559,19 @@ private:
             default:
                 break;
         }
+    }
+
+    // Every line is a feature edge, also without a physical tag (ref 0), as
+    // every tet is kept (region 0).  A 2.2 file lists a line once per
+    // physical group: the first listing gives the ref, as the first physical
+    // tag of a 4.1 entity does, and the others are dropped (an edge has one
+    // ref).
+    void add_line(int32_t physical) {
+        const auto [lo, hi] = std::minmax(v_[0], v_[1]);
+        const uint64_t key = uint64_t{static_cast<uint32_t>(lo)} << 32 | static_cast<uint32_t>(hi);
+        if (!lines_.insert(key).second) return;
+        d_.feature_edges.insert(d_.feature_edges.end(), v_, v_ + 2);
+        d_.edge_refs.push_back(physical);
     }
 
     static bool used(int type) { return type == kTet || type == kTriangle || type == kLine || type == kPoint; }
@@ -670,6 +684,7 @@ private:
     std::vector<int64_t> tags_;  // node tags in file order, while reading $Nodes
     NodeMap map_;
     std::map<int64_t, int32_t> physical_[4];  // entity tag -> first physical tag, per dimension
+    std::unordered_set<uint64_t> lines_;      // the feature edges so far, (low, high) vertex
     int32_t v_[64] = {};                      // vertices of the element being read
 };
 
@@ -728,6 +743,19 @@ std::vector<Run> runs_of(const std::vector<int32_t>& keys, const std::vector<siz
     return runs;
 }
 
+// The distinct values of `keys` in increasing order: entity k + 1 (of one
+// dimension) holds the elements with the k-th.
+std::vector<int32_t> distinct(std::vector<int32_t> keys) {
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    return keys;
+}
+
+// The entity (from 1) of the elements with `key`, `ids` from distinct().
+int entity_of(const std::vector<int32_t>& ids, int32_t key) {
+    return static_cast<int>(std::lower_bound(ids.begin(), ids.end(), key) - ids.begin()) + 1;
+}
+
 class Writer {
 public:
     Writer(const MeshData& d, int version, bool binary, Out& out)
@@ -737,10 +765,8 @@ public:
         // regions -> volume entities 1..k (sorted ids)
         tet_region_.assign(nt_, 0);
         if (!d.regions.empty()) tet_region_ = d.regions;
-        volume_ids_ = tet_region_;
+        volume_ids_ = distinct(tet_region_);
         if (volume_ids_.empty()) volume_ids_.push_back(0);
-        std::sort(volume_ids_.begin(), volume_ids_.end());
-        volume_ids_.erase(std::unique(volume_ids_.begin(), volume_ids_.end()), volume_ids_.end());
         for (size_t t = 0; t < nt_; ++t) tet_items_.push_back(t);
         tet_runs_ = runs_of(tet_region_, tet_items_);
         // nonzero markers -> surface entities 1..k
@@ -749,10 +775,15 @@ public:
                 tri_items_.push_back(f);
                 surface_ids_.push_back(d.tri_markers[f]);
             }
-        std::sort(surface_ids_.begin(), surface_ids_.end());
-        surface_ids_.erase(std::unique(surface_ids_.begin(), surface_ids_.end()), surface_ids_.end());
+        surface_ids_ = distinct(surface_ids_);
         tri_runs_ = runs_of(d.tri_markers, tri_items_);
+        // edge refs -> curve entities 1..k, ref 0 without physical group
         nedges_ = d.feature_edges.size() / 2;
+        edge_ref_.assign(nedges_, 0);
+        if (!d.edge_refs.empty()) edge_ref_ = d.edge_refs;
+        curve_ids_ = distinct(edge_ref_);
+        for (size_t e = 0; e < nedges_; ++e) edge_items_.push_back(e);
+        edge_runs_ = runs_of(edge_ref_, edge_items_);
         nfixed_ = d.fixed.size();
         nelements_ = nfixed_ + nedges_ + tri_items_.size() + nt_;
         // bounding box for the entities
@@ -786,21 +817,20 @@ public:
     }
 
 private:
-    int volume_entity(int32_t region) const {
-        return static_cast<int>(std::lower_bound(volume_ids_.begin(), volume_ids_.end(), region) - volume_ids_.begin()) + 1;
-    }
-    int surface_entity(int32_t marker) const {
-        return static_cast<int>(std::lower_bound(surface_ids_.begin(), surface_ids_.end(), marker) - surface_ids_.begin()) + 1;
-    }
+    int volume_entity(int32_t region) const { return entity_of(volume_ids_, region); }
+    int surface_entity(int32_t marker) const { return entity_of(surface_ids_, marker); }
+    int curve_entity(int32_t ref) const { return entity_of(curve_ids_, ref); }
     uint64_t node(int32_t v) const { return static_cast<uint64_t>(static_cast<int64_t>(v) - d_.base + 1); }
 
     void write_physical_names() {
-        size_t n = (nfixed_ ? 1 : 0) + (nedges_ ? 1 : 0) + surface_ids_.size();
+        size_t n = (nfixed_ ? 1 : 0) + surface_ids_.size();
+        for (int32_t r : curve_ids_) n += r != 0;
         for (int32_t r : volume_ids_) n += r != 0;
         if (n == 0) return;
         out_.text("$PhysicalNames\n%zu\n", n);
         if (nfixed_) out_.text("0 1 \"fixed vertices\"\n");
-        if (nedges_) out_.text("1 1 \"feature edges\"\n");
+        for (int32_t r : curve_ids_)
+            if (r != 0) out_.text("1 %d \"edge ref %d\"\n", r, r);
         for (int32_t m : surface_ids_) out_.text("2 %d \"marker %d\"\n", m, m);
         for (int32_t r : volume_ids_)
             if (r != 0) out_.text("3 %d \"region %d\"\n", r, r);
@@ -810,7 +840,7 @@ private:
     // ---- 4.1
     void write_entities41() {
         out_.text("$Entities\n");
-        const size_t counts[4] = {nfixed_, nedges_ ? 1u : 0u, surface_ids_.size(), volume_ids_.size()};
+        const size_t counts[4] = {nfixed_, curve_ids_.size(), surface_ids_.size(), volume_ids_.size()};
         if (binary_)
             for (size_t c : counts) out_.u64(c);
         else
@@ -826,7 +856,7 @@ private:
                 out_.text("%zu %.17g %.17g %.17g 1 1\n", p + 1, x[0], x[1], x[2]);
             }
         }
-        if (nedges_) entity41(1, 1);
+        for (size_t c = 0; c < curve_ids_.size(); ++c) entity41(static_cast<int>(c) + 1, curve_ids_[c]);
         for (size_t s = 0; s < surface_ids_.size(); ++s) entity41(static_cast<int>(s) + 1, surface_ids_[s]);
         for (size_t v = 0; v < volume_ids_.size(); ++v) entity41(static_cast<int>(v) + 1, volume_ids_[v]);
         out_.text("%s$EndEntities\n", binary_ ? "\n" : "");
@@ -904,7 +934,7 @@ private:
 
     void write_elements41() {
         out_.text("$Elements\n");
-        const size_t nblocks = nfixed_ + (nedges_ ? 1 : 0) + tri_runs_.size() + tet_runs_.size();
+        const size_t nblocks = nfixed_ + edge_runs_.size() + tri_runs_.size() + tet_runs_.size();
         if (binary_) {
             out_.u64(nblocks);
             out_.u64(nelements_);
@@ -917,9 +947,9 @@ private:
             block_header41(0, static_cast<int>(p) + 1, kPoint, 1);
             element41(&d_.fixed[p], 1);
         }
-        if (nedges_) {
-            block_header41(1, 1, kLine, nedges_);
-            for (size_t e = 0; e < nedges_; ++e) element41(&d_.feature_edges[2 * e], 2);
+        for (const Run& r : edge_runs_) {
+            block_header41(1, curve_entity(r.key), kLine, r.end - r.begin);
+            for (size_t k = r.begin; k < r.end; ++k) element41(&d_.feature_edges[2 * edge_items_[k]], 2);
         }
         for (const Run& r : tri_runs_) {
             block_header41(2, surface_entity(r.key), kTriangle, r.end - r.begin);
@@ -974,7 +1004,8 @@ private:
         header22(kPoint, nfixed_);
         for (size_t p = 0; p < nfixed_; ++p) element22(kPoint, 1, static_cast<int>(p) + 1, &d_.fixed[p], 1);
         header22(kLine, nedges_);
-        for (size_t e = 0; e < nedges_; ++e) element22(kLine, 1, 1, &d_.feature_edges[2 * e], 2);
+        for (size_t e = 0; e < nedges_; ++e)
+            element22(kLine, edge_ref_[e], curve_entity(edge_ref_[e]), &d_.feature_edges[2 * e], 2);
         header22(kTriangle, tri_items_.size());
         for (size_t f : tri_items_) {
             const int32_t m = d_.tri_markers[f];
@@ -992,9 +1023,9 @@ private:
     Out& out_;
     size_t nv_ = 0, nt_ = 0, nedges_ = 0, nfixed_ = 0, nelements_ = 0;
     size_t tag_ = 0;  // the last element tag written
-    std::vector<int32_t> tet_region_, volume_ids_, surface_ids_;
-    std::vector<size_t> tet_items_, tri_items_;
-    std::vector<Run> tet_runs_, tri_runs_;
+    std::vector<int32_t> tet_region_, volume_ids_, surface_ids_, edge_ref_, curve_ids_;
+    std::vector<size_t> tet_items_, tri_items_, edge_items_;
+    std::vector<Run> tet_runs_, tri_runs_, edge_runs_;
     double lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
 };
 
@@ -1005,6 +1036,8 @@ void check_for_writing(const MeshData& d) {
         bad("array sizes are not multiples of 3, 4, 3 and 2");
     if (!d.regions.empty() && d.regions.size() != d.tets.size() / 4) bad("one region per tet expected");
     if (d.tri_markers.size() != d.triangles.size() / 3) bad("one marker per triangle expected");
+    if (!d.edge_refs.empty() && d.edge_refs.size() != d.feature_edges.size() / 2)
+        bad("one ref per feature edge expected");
     const int64_t nv = static_cast<int64_t>(d.xyz.size() / 3);
     if (nv > INT32_MAX) bad("more than 2^31 - 1 vertices");
     auto check = [&](const std::vector<int32_t>& a, const char* what) {

@@ -13,8 +13,12 @@
 //                                        the first physical tag of its
 //                                        surface; triangles without one are
 //                                        not marked faces and are dropped
-//               type 1 (2-node line)  -> feature_edges, when its curve has a
-//                                        physical tag
+//               type 1 (2-node line)  -> feature_edges + edge_refs, ref =
+//                                        the first physical tag of its
+//                                        curve (0 when none); a line a 2.2
+//                                        file lists again, once per
+//                                        physical group, is kept once with
+//                                        the first listing's tag
 //               type 15 (point)       -> fixed vertices, when its point
 //                                        entity has a physical tag
 //               Any other volume element (higher-order tets, hexahedra,
@@ -35,10 +39,12 @@
 //   one volume entity per region id, physical tag = the region id (region
 //   0: a volume without physical group); one surface entity per nonzero
 //   face marker, physical tag = the marker (marker-0 faces are not
-//   written); one curve entity, physical tag 1, for the feature edges; one
-//   point entity per fixed vertex, all in physical group 1.  $PhysicalNames
-//   names them ("region 3", "marker 7", "feature edges", "fixed vertices").
-// So regions, face markers, feature edges and fixed vertices survive a
+//   written); one curve entity per edge ref, physical tag = the ref (ref 0:
+//   a curve without physical group), edges in their order; one point entity
+//   per fixed vertex, all in physical group 1.  $PhysicalNames names them
+//   ("region 3", "marker 7", "edge ref 20", "fixed vertices").
+// So regions, face markers, feature edges with their refs and fixed
+// vertices survive a
 // write -> read round trip; coordinates are bit-exact (%.17g or binary).
 // Gmsh itself (checked with Gmsh 4.8.4: -check, and -0 -o to all four
 // variants) reads all four; by default it saves only elements in physical

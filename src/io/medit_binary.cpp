@@ -19,10 +19,13 @@
 //       Corners (13), Ridges (14), RequiredVertices (15) one int each;
 //     - End (54): last; libMeshb writes its position as 0.
 //
-// The mapping to MeshData is that of the ASCII reader (medit.cpp): tet ref
-// -> region, triangle ref -> marker, Corners and RequiredVertices -> fixed,
-// the Edges named by Ridges -> feature edges; vertex refs are dropped.  Every
-// other keyword, known to libMeshb or not, is skipped by its next-keyword
+// The mapping to MeshData is that of the ASCII reader (medit.cpp): vertex
+// ref -> vertex_refs, tet ref -> region, triangle ref -> marker, every edge
+// of Edges -> a feature edge with its ref in edge_refs, Corners -> corners,
+// RequiredVertices -> fixed.  Ridges adds nothing (every edge is a feature
+// edge already) but its indices must name edges.  A write lists every edge
+// in Ridges, for tools that take only ridges as feature lines.  Every other
+// keyword, known to libMeshb or not, is skipped by its next-keyword
 // position.  Nothing in the file is trusted: every position must move
 // forward and stay inside the file, every count must fit in the bytes before
 // the next keyword (checked before allocating), every index must name a
@@ -312,12 +315,17 @@ private:
         return static_cast<int32_t>(v);
     }
 
-    int32_t ref_at(const Records& r, int64_t rec, int field, const char* what) const {
-        const int64_t v = int_at(r, rec, field);
+    // The int `byte` bytes into record `rec`: a reference number.
+    int32_t ref_at_byte(const Records& r, int64_t rec, int64_t byte, const char* what) const {
+        const int64_t v = load_int(r.record(rec) + byte, lay_.int_size, lay_.big_endian);
         if (v < INT32_MIN || v > INT32_MAX)
-            in_.fail(r.offset(rec, int64_t{field} * lay_.int_size),
-                     std::string(what) + " " + std::to_string(v) + " does not fit in 32 bits");
+            in_.fail(r.offset(rec, byte), std::string(what) + " " + std::to_string(v) + " does not fit in 32 bits");
         return static_cast<int32_t>(v);
+    }
+
+    // Int `field` of record `rec` (a record of ints only): a reference number.
+    int32_t ref_at(const Records& r, int64_t rec, int field, const char* what) const {
+        return ref_at_byte(r, rec, int64_t{field} * lay_.int_size, what);
     }
 
     MeshData read_sections() {
@@ -335,7 +343,8 @@ private:
         if (vr.count > INT32_MAX) in_.fail(vk->data, "more than 2^31 - 1 vertices");
         const int64_t nverts = vr.count;
         d.xyz.resize(static_cast<size_t>(3 * nverts));
-        for (int64_t v = 0; v < nverts; ++v)
+        d.vertex_refs.resize(static_cast<size_t>(nverts));
+        for (int64_t v = 0; v < nverts; ++v) {
             for (int c = 0; c < 3; ++c) {
                 const double x = load_real(vr.record(v) + c * lay_.real_size, lay_.real_size, lay_.big_endian);
                 if (!std::isfinite(x))
@@ -344,9 +353,10 @@ private:
                         "coordinate " + std::to_string(c) + " of vertex " + std::to_string(v + 1) + " is not finite");
                 d.xyz[static_cast<size_t>(3 * v + c)] = x;
             }
+            d.vertex_refs[static_cast<size_t>(v)] = ref_at_byte(vr, v, 3 * lay_.real_size, "vertex reference");
+        }
 
         const Keyword* tk = nullptr;
-        std::vector<int32_t> edges;                       // 2 per edge of the Edges sections
         std::vector<std::pair<int64_t, int64_t>> ridges;  // 1-based edge, offset
         for (const Keyword& k : keywords_) {
             switch (k.code) {
@@ -380,17 +390,19 @@ private:
                 case kCorners:
                 case kRequiredVertices: {
                     const Records r = records(k, 1, 0);
+                    std::vector<int32_t>& to = k.code == kCorners ? d.corners : d.fixed;
                     for (int64_t i = 0; i < r.count; ++i)
-                        d.fixed.push_back(vertex_at(r, i, 0, nverts, keyword_name(k.code)));
+                        to.push_back(vertex_at(r, i, 0, nverts, keyword_name(k.code)));
                     break;
                 }
                 case kEdges: {
                     const Records r = records(k, 3, 0);
-                    edges.reserve(edges.size() + static_cast<size_t>(2 * r.count));
+                    d.feature_edges.reserve(d.feature_edges.size() + static_cast<size_t>(2 * r.count));
+                    d.edge_refs.reserve(d.edge_refs.size() + static_cast<size_t>(r.count));
                     for (int64_t e = 0; e < r.count; ++e) {
-                        edges.push_back(vertex_at(r, e, 0, nverts, "edge vertex"));
-                        edges.push_back(vertex_at(r, e, 1, nverts, "edge vertex"));
-                        ref_at(r, e, 2, "edge reference");
+                        d.feature_edges.push_back(vertex_at(r, e, 0, nverts, "edge vertex"));
+                        d.feature_edges.push_back(vertex_at(r, e, 1, nverts, "edge vertex"));
+                        d.edge_refs.push_back(ref_at(r, e, 2, "edge reference"));
                     }
                     break;
                 }
@@ -404,14 +416,12 @@ private:
             }
         }
         if (!tk) in_.fail(end_at_, "no Tetrahedra section before End");
-        const int64_t nedges = static_cast<int64_t>(edges.size() / 2);
-        for (const auto& [e, offset] : ridges) {
+        // Checked once every Edges section is read: Ridges may come first.
+        const int64_t nedges = static_cast<int64_t>(d.edge_refs.size());
+        for (const auto& [e, offset] : ridges)
             if (e < 1 || e > nedges)
                 in_.fail(offset,
                          "ridge " + std::to_string(e) + " is not one of the " + std::to_string(nedges) + " edges");
-            d.feature_edges.push_back(edges[static_cast<size_t>(2 * (e - 1))]);
-            d.feature_edges.push_back(edges[static_cast<size_t>(2 * (e - 1) + 1)]);
-        }
         return d;
     }
 };
@@ -470,21 +480,24 @@ MeshData read_medit_binary(const std::string& path) {
 void write_medit_binary(const std::string& path, const MeshData& d) {
     const int64_t nv = static_cast<int64_t>(d.xyz.size() / 3), nt = static_cast<int64_t>(d.tets.size() / 4);
     const int64_t nf = static_cast<int64_t>(d.tri_markers.size()), nfix = static_cast<int64_t>(d.fixed.size());
-    const int64_t ne = static_cast<int64_t>(d.feature_edges.size() / 2);
+    const int64_t ne = static_cast<int64_t>(d.feature_edges.size() / 2), nc = static_cast<int64_t>(d.corners.size());
     if (d.triangles.size() != static_cast<size_t>(3 * nf) ||
-        (!d.regions.empty() && d.regions.size() != static_cast<size_t>(nt)))
-        throw Error(BODT_ERR_INVALID_ARGUMENT, path + ": the triangles, markers and regions do not match in number");
-    for (int64_t n : {nv, nt, nf, nfix, ne})
+        (!d.regions.empty() && d.regions.size() != static_cast<size_t>(nt)) ||
+        (!d.vertex_refs.empty() && d.vertex_refs.size() != static_cast<size_t>(nv)) ||
+        (!d.edge_refs.empty() && d.edge_refs.size() != static_cast<size_t>(ne)))
+        throw Error(BODT_ERR_INVALID_ARGUMENT,
+                    path + ": the triangles, markers, regions, vertex refs and edge refs do not match in number");
+    for (int64_t n : {nv, nt, nf, nfix, ne, nc})
         if (n > INT32_MAX) throw Error(BODT_ERR_IO, path + ": more than 2^31 - 1 records in one .meshb section");
     const int64_t shift = 1 - int64_t{d.base};  // Medit counts from 1
 
     // Payload bytes of each keyword after its header (version 2 and 3 alike:
-    // 64-bit reals, 32-bit ints).
+    // 64-bit reals, 32-bit ints); -1 for a keyword not written.
     const int64_t dims = 4, verts = 4 + 28 * nv, tris = 4 + 16 * nf, tets = 4 + 20 * nt;
-    const int64_t fixed = nfix > 0 ? 4 + 4 * nfix : -1;
     const int64_t edges = ne > 0 ? 4 + 12 * ne : -1, ridges = ne > 0 ? 4 + 4 * ne : -1;
+    const int64_t corners = nc > 0 ? 4 + 4 * nc : -1, fixed = nfix > 0 ? 4 + 4 * nfix : -1;
     int64_t total = 8 + 4 + 4;  // header and End
-    for (int64_t p : {dims, verts, tris, tets, fixed, edges, ridges})
+    for (int64_t p : {dims, verts, tris, tets, edges, ridges, corners, fixed})
         if (p >= 0) total += 4 + 4 + p;
     // Version 2 stores positions in signed 32 bits; version 3 in 64 bits.
     const int version = total <= INT32_MAX ? 2 : 3;
@@ -499,6 +512,12 @@ void write_medit_binary(const std::string& path, const MeshData& d) {
                                                        " vertices (numbered from " + std::to_string(d.base) + ")");
         w.i32(i);
     };
+    // A list of vertices as a keyword of one int per record.
+    auto vertex_list = [&](int32_t code, int64_t payload, const std::vector<int32_t>& vertices) {
+        w.keyword(code, payload);
+        w.i32(static_cast<int64_t>(vertices.size()));
+        for (int32_t v : vertices) index(v);
+    };
     w.i32(1);
     w.i32(version);
     w.keyword(kDimension, dims);
@@ -507,7 +526,7 @@ void write_medit_binary(const std::string& path, const MeshData& d) {
     w.i32(nv);
     for (int64_t v = 0; v < nv; ++v) {
         for (int c = 0; c < 3; ++c) w.real(d.xyz[static_cast<size_t>(3 * v + c)]);
-        w.i32(0);
+        w.i32(d.vertex_refs.empty() ? 0 : d.vertex_refs[static_cast<size_t>(v)]);
     }
     w.keyword(kTriangles, tris);
     w.i32(nf);
@@ -521,23 +540,20 @@ void write_medit_binary(const std::string& path, const MeshData& d) {
         for (int c = 0; c < 4; ++c) index(d.tets[static_cast<size_t>(4 * t + c)]);
         w.i32(d.regions.empty() ? 0 : d.regions[static_cast<size_t>(t)]);
     }
-    if (nfix > 0) {
-        w.keyword(kRequiredVertices, fixed);
-        w.i32(nfix);
-        for (int32_t v : d.fixed) index(v);
-    }
     if (ne > 0) {
         w.keyword(kEdges, edges);
         w.i32(ne);
         for (int64_t e = 0; e < ne; ++e) {
             index(d.feature_edges[static_cast<size_t>(2 * e)]);
             index(d.feature_edges[static_cast<size_t>(2 * e + 1)]);
-            w.i32(0);
+            w.i32(d.edge_refs.empty() ? 0 : d.edge_refs[static_cast<size_t>(e)]);
         }
         w.keyword(kRidges, ridges);
         w.i32(ne);
         for (int64_t e = 1; e <= ne; ++e) w.i32(e);
     }
+    if (nc > 0) vertex_list(kCorners, corners, d.corners);
+    if (nfix > 0) vertex_list(kRequiredVertices, fixed, d.fixed);
     w.end();
 }
 

@@ -1,12 +1,14 @@
 // TetGen .node/.ele/.face files, 0- or 1-based (the first node's number sets
 // the base for all three files).
-//   .node   n 3 nattr nbm, then  i x y z [attrs] [marker]
+//   .node   n 3 nattr nbm, then  i x y z [attrs] [marker]   marker -> vertex ref
 //   .ele    n 4 nattr,     then  i a b c d [attrs]    first attr -> region id
 //   .face   n nbm,         then  i a b c [marker]     (optional file)
 // Tets are read in the file's orientation; bodt_mesh_create detects a file
 // whose tets are all negatively oriented (Stellar's convention).  Written
-// files are 0-based.  The format has no notion of fixed vertices: they are
-// not written (use Medit's RequiredVertices to keep them).
+// files are 0-based, with the marker column in .node always (0 for a mesh
+// without vertex refs).  The format has no notion of fixed vertices,
+// corners or feature edges: they are not written (use Medit's
+// RequiredVertices, Corners and Edges to keep them).
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
 #include "io/text_scanner.hpp"
@@ -49,6 +51,7 @@ int64_t read_nodes(const std::string& path, MeshData& d) {
     const int64_t nbm = in.read_int("the boundary-marker flag");
     if (nattr > 1000 || nbm < 0 || nbm > 1) in.fail("unexpected .node header");
     d.xyz.resize(static_cast<size_t>(3 * n));
+    if (nbm) d.vertex_refs.resize(static_cast<size_t>(n));
     int64_t base = 0;
     for (int64_t v = 0; v < n; ++v) {
         if (v == 0) {
@@ -58,7 +61,12 @@ int64_t read_nodes(const std::string& path, MeshData& d) {
             read_record_number(in, base + v, "node number");
         }
         for (int k = 0; k < 3; ++k) d.xyz[3 * v + k] = in.read_double("a node coordinate");
-        for (int64_t a = 0; a < nattr + nbm; ++a) in.expect("a node attribute or marker");
+        for (int64_t a = 0; a < nattr; ++a) in.expect("a node attribute");
+        if (nbm) {
+            const int64_t marker = in.read_int("a node boundary marker");
+            if (marker < INT32_MIN || marker > INT32_MAX) in.fail("the node boundary marker does not fit in 32 bits");
+            d.vertex_refs[v] = static_cast<int32_t>(marker);
+        }
     }
     return base;
 }
@@ -119,9 +127,10 @@ void write_tetgen(const std::string& path, const MeshData& d) {
     const int shift = -d.base;  // written 0-based
     {
         OutputFile out(stem + ".node");
-        std::fprintf(out.get(), "%zu 3 0 0\n", nv);
+        std::fprintf(out.get(), "%zu 3 0 1\n", nv);
         for (size_t v = 0; v < nv; ++v)
-            std::fprintf(out.get(), "%zu %.17g %.17g %.17g\n", v, d.xyz[3 * v], d.xyz[3 * v + 1], d.xyz[3 * v + 2]);
+            std::fprintf(out.get(), "%zu %.17g %.17g %.17g %d\n", v, d.xyz[3 * v], d.xyz[3 * v + 1], d.xyz[3 * v + 2],
+                         d.vertex_refs.empty() ? 0 : d.vertex_refs[v]);
         out.close();
     }
     {

@@ -815,6 +815,8 @@ MeshData read_vtu(const std::string& path) {
     const std::vector<int64_t> region = optional_ints(cell_data, "region", ncells, "cells");
     const std::vector<int64_t> marker = optional_ints(cell_data, "marker", ncells, "cells");
     const std::vector<int64_t> fixed = optional_ints(point_data, "fixed", npoints, "points");
+    const std::vector<int64_t> corner = optional_ints(point_data, "corner", npoints, "points");
+    const std::vector<int64_t> ref = optional_ints(point_data, "ref", npoints, "points");
 
     for (int64_t c = 0; c < ncells; ++c) {
         const int64_t t = types.i[c];
@@ -847,12 +849,16 @@ MeshData read_vtu(const std::string& path) {
         } else if (t == kVtkLine) {
             d.feature_edges.push_back(static_cast<int32_t>(v[0]));
             d.feature_edges.push_back(static_cast<int32_t>(v[1]));
+            d.edge_refs.push_back(marker.empty() ? 0 : static_cast<int32_t>(marker[c]));
         }
     }
     if (d.tets.empty()) doc.fail(*piece, "the file has no tetrahedra (VTK_TETRA cells)");
     if (d.tets.size() / 4 > static_cast<size_t>(INT32_MAX)) doc.fail(*piece, "more than 2^31 - 1 tets");
     for (size_t k = 0; k < fixed.size(); ++k)
         if (fixed[k] != 0) d.fixed.push_back(static_cast<int32_t>(k));
+    for (size_t k = 0; k < corner.size(); ++k)
+        if (corner[k] != 0) d.corners.push_back(static_cast<int32_t>(k));
+    d.vertex_refs.assign(ref.begin(), ref.end());  // each checked to fit in 32 bits
     return d;
 }
 
@@ -868,6 +874,8 @@ void write_vtu(const std::string& path, const MeshData& d) {
         invalid("an array size is not a multiple of its record size");
     if (!d.regions.empty() && d.regions.size() != nt) invalid("regions must have one value per tet");
     if (d.tri_markers.size() != nf) invalid("tri_markers must have one value per triangle");
+    if (!d.vertex_refs.empty() && d.vertex_refs.size() != nv) invalid("vertex_refs must have one value per vertex");
+    if (!d.edge_refs.empty() && d.edge_refs.size() != ne) invalid("edge_refs must have one value per feature edge");
     auto check_index = [&](int32_t v) {
         const int64_t i = static_cast<int64_t>(v) - d.base;
         if (i < 0 || i >= static_cast<int64_t>(nv)) invalid("vertex " + std::to_string(v) + " is out of range");
@@ -876,6 +884,7 @@ void write_vtu(const std::string& path, const MeshData& d) {
     for (int32_t v : d.triangles) check_index(v);
     for (int32_t v : d.feature_edges) check_index(v);
     for (int32_t v : d.fixed) check_index(v);
+    for (int32_t v : d.corners) check_index(v);
     std::set<std::string> names = {"region", "marker"};
     for (const auto& field : d.tet_fields) {
         if (field.values.size() != nt) invalid("tet field '" + field.name + "' must have one value per tet");
@@ -899,14 +908,25 @@ void write_vtu(const std::string& path, const MeshData& d) {
                  "    <Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%llu\">\n",
                  nv, static_cast<unsigned long long>(ncells));
     const char* in4 = "        ";
-    if (!d.fixed.empty()) {
+    // 1 on the listed vertices, else 0.
+    auto write_flags = [&](const char* name, const std::vector<int32_t>& vertices) {
         std::vector<uint8_t> flag(nv, 0);
-        for (int32_t v : d.fixed) flag[static_cast<size_t>(v - base)] = 1;
+        for (int32_t v : vertices) flag[static_cast<size_t>(v - base)] = 1;
+        write_array(o, in4, "UInt8", name, 1, nv, 1, [&](uint64_t k) { return uint64_t{flag[k]}; });
+    };
+    if (!d.fixed.empty() || !d.corners.empty() || !d.vertex_refs.empty()) {
         std::fprintf(o, "      <PointData>\n");
-        write_array(o, in4, "UInt8", "fixed", 1, nv, 1, [&](uint64_t k) { return uint64_t{flag[k]}; });
+        if (!d.vertex_refs.empty())
+            write_array(o, in4, "Int32", "ref", 1, nv, 4,
+                        [&](uint64_t k) { return int_bits(d.vertex_refs[k]) & 0xFFFFFFFFu; });
+        if (!d.fixed.empty()) write_flags("fixed", d.fixed);
+        if (!d.corners.empty()) write_flags("corner", d.corners);
         std::fprintf(o, "      </PointData>\n");
     }
-    if (!d.regions.empty() || nf > 0 || !d.tet_fields.empty()) {
+    // Triangle cells always carry a marker; line cells only when the edges
+    // have refs (without the array they read back as ref 0).
+    const bool markers = nf > 0 || !d.edge_refs.empty();
+    if (!d.regions.empty() || markers || !d.tet_fields.empty()) {
         if (!d.tet_fields.empty())
             std::fprintf(o, "      <CellData Scalars=\"%s\">\n", xml_escape(d.tet_fields[0].name).c_str());
         else
@@ -915,9 +935,12 @@ void write_vtu(const std::string& path, const MeshData& d) {
             write_array(o, in4, "Int32", "region", 1, ncells, 4, [&](uint64_t c) {
                 return int_bits(c < nt ? d.regions[c] : -1) & 0xFFFFFFFFu;
             });
-        if (nf > 0)
+        if (markers)
             write_array(o, in4, "Int32", "marker", 1, ncells, 4, [&](uint64_t c) {
-                return int_bits(c >= nt && c < nt + nf ? d.tri_markers[c - nt] : -1) & 0xFFFFFFFFu;
+                int32_t m = -1;  // on tets
+                if (c >= nt + nf) m = d.edge_refs.empty() ? 0 : d.edge_refs[c - nt - nf];
+                else if (c >= nt) m = d.tri_markers[c - nt];
+                return int_bits(m) & 0xFFFFFFFFu;
             });
         for (const auto& field : d.tet_fields)
             write_array(o, in4, "Float64", field.name, 1, ncells, 8, [&](uint64_t c) {

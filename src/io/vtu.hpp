@@ -9,11 +9,14 @@
 //               (VTK_TRIANGLE, 5), then every feature edge (VTK_LINE, 3).
 //   CellData    region (Int32)  when there are regions: the tet's region,
 //                               -1 on triangle and line cells
-//               marker (Int32)  when there are marked triangles: the
-//                               triangle's marker, -1 on tet and line cells
+//               marker (Int32)  when there are marked triangles or edge
+//                               refs: the triangle's marker, the line's
+//                               edge ref, -1 on tets
 //               one Float64 array per MeshData::tet_fields entry, NaN on
 //               triangle and line cells
 //   PointData   fixed (UInt8)   when there are fixed vertices: 1 or 0
+//               corner (UInt8)  when there are corners: 1 or 0
+//               ref (Int32)     when there are vertex refs
 //
 // Why: boundary markers and feature edges survive a write -> read as cells
 // of their own (VTK has no other place for them), and the reader tells the
@@ -31,8 +34,9 @@
 // without a marker array get marker 0), VTK_VERTEX cells are ignored;
 // anything else (hexahedra, quadratic tets, polygons ...) is refused, as are
 // appended data, compression, big-endian files, more than one Piece and a
-// file without tets.  Without a `region` array, regions stay empty; `fixed`
-// comes back sorted, each vertex once.  Other arrays are ignored (tet_fields
+// file without tets.  Without a `region` array, regions stay empty; lines
+// get their edge ref from `marker` (0 without it); `ref` gives vertex_refs;
+// `fixed` and `corner` come back sorted, each vertex once.  Other arrays are ignored (tet_fields
 // are not read back).  Indices are
 // 0-based: the returned MeshData has base 0.  Every problem is an
 // Error(BODT_ERR_IO) "<path>:<line>: ...".

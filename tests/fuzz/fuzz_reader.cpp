@@ -102,10 +102,13 @@ void check(const bodt::MeshData& d) {
     const size_t nverts = d.xyz.size() / 3, ntets = d.tets.size() / 4;
     FUZZ_CHECK(d.regions.empty() || d.regions.size() == ntets);
     FUZZ_CHECK(d.tri_markers.size() == d.triangles.size() / 3);
+    FUZZ_CHECK(d.vertex_refs.empty() || d.vertex_refs.size() == nverts);
+    FUZZ_CHECK(d.edge_refs.empty() || d.edge_refs.size() == d.feature_edges.size() / 2);
     for (double x : d.xyz) FUZZ_CHECK(std::isfinite(x));
     for (int32_t v : d.tets) check_index(v, d.base, nverts);
     for (int32_t v : d.triangles) check_index(v, d.base, nverts);
     for (int32_t v : d.fixed) check_index(v, d.base, nverts);
+    for (int32_t v : d.corners) check_index(v, d.base, nverts);
     for (int32_t v : d.feature_edges) check_index(v, d.base, nverts);
     // tet_fields are written, never read back.
     FUZZ_CHECK(d.tet_fields.empty());
