@@ -1,12 +1,14 @@
 // bench_util.hpp -- helpers shared by bodt_bench and bodt_bench_deformed:
-// printf into a string, JSON values, files and folders, bodt handles and
-// sized structs, and a run in a forked child with a timeout.
+// printf into a string, JSON values, files and folders, the boundary of a
+// tet mesh, memory in use, bodt handles and sized structs, a run in a
+// forked child with a timeout, and an external program with a timeout.
 #ifndef BODT_BENCH_UTIL_HPP
 #define BODT_BENCH_UTIL_HPP
 
 #include "bodt.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <functional>
 #include <regex>
@@ -50,6 +52,26 @@ void keep_cases_matching(std::vector<C>& cases, const std::string& regex) {
         if (std::regex_search(c.name, re)) kept.push_back(c);
     cases.swap(kept);
 }
+
+// ------------------------------------------------------------- meshes
+
+// The faces that belong to exactly one tet (the domain boundary; faces
+// between two tets of different regions are NOT included), 3 indices per
+// triangle, 0-based, oriented as the tet's outward face for a positive tet,
+// in a fixed order.  tets holds 4 indices per tet in base index_base.
+std::vector<int32_t> boundary_triangles(const std::vector<int32_t>& tets, int index_base);
+
+// Largest side of the axis-aligned bounding box of the vertices of the
+// triangles (0-based, 3 per triangle) in xyz (3 per vertex); 0 without any.
+double bbox_largest_side(const std::vector<double>& xyz, const std::vector<int32_t>& triangles);
+
+// ------------------------------------------------------------- memory
+
+// Bytes the C/C++ heap hands out now (glibc mallinfo2: uordblks + hblkhd,
+// which includes mmap'ed blocks); -1 where it is not known.
+int64_t heap_in_use();
+// Resident set size of this process now (/proc/self/statm), -1 unknown.
+int64_t rss_bytes();
 
 // ------------------------------------------------------------------- bodt
 
@@ -99,6 +121,29 @@ ChildRun run_isolated(Result& result, bool fork_runs, int timeout_s, Run run) {
     return run_isolated_bytes(&result, sizeof result, fork_runs, timeout_s,
                               [&](void* out) { *static_cast<Result*>(out) = run(); });
 }
+
+// ------------------------------------------------------ external programs
+
+struct ProcessRun {
+    bool started = false;     // fork + exec worked
+    bool timed_out = false;   // killed after timeout_s
+    int exit_code = -1;       // when it exited
+    int signal = 0;           // when a signal ended it
+    double wall_s = 0;        // from fork to its end
+    double peak_rss_mb = 0;   // its ru_maxrss
+    std::string error;        // why it did not start
+};
+
+// Runs argv[0] (searched in PATH) with stdin from /dev/null and stdout and
+// stderr into output_path; kills it (SIGKILL) after timeout_s seconds (<= 0:
+// never).  It dies with the calling process (PR_SET_PDEATHSIG).
+ProcessRun run_process(const std::vector<std::string>& argv, const std::string& output_path, double timeout_s);
+
+// argv[0] found in PATH (or a path that exists): the full path, else "".
+std::string find_program(const std::string& name);
+
+// The whole file, "" if it cannot be read.
+std::string read_text_file(const std::string& path);
 
 }  // namespace bench
 

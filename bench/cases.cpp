@@ -2,7 +2,6 @@
 #include "cases.hpp"
 
 #include "bench_util.hpp"
-#include "surface_distance.hpp"
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -407,16 +406,16 @@ bool tetgen_surface(const std::string& path, const char* switches, PreparedMesh&
     return true;
 }
 
-// 642 uniformly random points on the unit sphere (fixed seed).  With
+// npts uniformly random points on the unit sphere (fixed seed: 642 points
+// keep the seed of the first version, so sphere642 is the same mesh).  With
 // refine_bound <= 0: the Delaunay tetrahedralization of the points (`tetgen
 // -Q` on the point set): every vertex is on the boundary.  Otherwise the
 // convex hull of that tetrahedralization is meshed again as a PLC with
 // `-pq<bound>YQ`: the boundary keeps exactly the 642 points (Y) and TetGen's
 // quality refinement inserts interior Steiner points, like the 87 interior
 // points of paper 000's Random Sphere.
-bool random_sphere(double refine_bound, PreparedMesh& pm, std::string& err) {
-    const int npts = 642;
-    Rng rng(20240000642ULL);
+bool random_sphere(int npts, double refine_bound, PreparedMesh& pm, std::string& err) {
+    Rng rng(20240000000ULL + uint64_t(npts));
     tetgenio in, out;
     in.firstnumber = 0;
     in.numberofpoints = npts;
@@ -431,7 +430,7 @@ bool random_sphere(double refine_bound, PreparedMesh& pm, std::string& err) {
     if (!run_tetgen("Q", in, out, err)) return false;
     if (refine_bound <= 0) {
         copy_tetgen_output(out, pm.arrays, false);
-        pm.note = "Delaunay of 642 random points on the unit sphere (tetgen -Q): " +
+        pm.note = "Delaunay of " + std::to_string(npts) + " random points on the unit sphere (tetgen -Q): " +
                   std::to_string(out.numberofpoints) + " vertices, " + std::to_string(out.numberoftetrahedra) +
                   " tets, no interior vertex";
         return true;
@@ -443,9 +442,9 @@ bool random_sphere(double refine_bound, PreparedMesh& pm, std::string& err) {
     plc.numberofpoints = out.numberofpoints;
     plc.pointlist = new REAL[3 * size_t(out.numberofpoints)];
     std::copy(out.pointlist, out.pointlist + 3 * size_t(out.numberofpoints), plc.pointlist);
-    plc.numberoffacets = int(hull.size());
-    plc.facetlist = new tetgenio::facet[hull.size()];
-    for (size_t f = 0; f < hull.size(); ++f) {
+    plc.numberoffacets = int(hull.size() / 3);
+    plc.facetlist = new tetgenio::facet[hull.size() / 3];
+    for (size_t f = 0; f < hull.size() / 3; ++f) {
         tetgenio::facet& fa = plc.facetlist[f];
         tetgenio::init(&fa);
         fa.numberofpolygons = 1;
@@ -453,19 +452,51 @@ bool random_sphere(double refine_bound, PreparedMesh& pm, std::string& err) {
         tetgenio::init(&fa.polygonlist[0]);
         fa.polygonlist[0].numberofvertices = 3;
         fa.polygonlist[0].vertexlist = new int[3];
-        for (int c = 0; c < 3; ++c) fa.polygonlist[0].vertexlist[c] = hull[f][size_t(c)];
+        for (int c = 0; c < 3; ++c) fa.polygonlist[0].vertexlist[c] = hull[3 * f + size_t(c)];
     }
     char sw[64];
     std::snprintf(sw, sizeof sw, "pq%gYQ", refine_bound);
     if (!run_tetgen(sw, plc, out2, err)) return false;
     copy_tetgen_output(out2, pm.arrays, false);
-    pm.note = "642 random points on the unit sphere, convex hull re-meshed with tetgen -" + std::string(sw) + ": " +
+    pm.note = std::to_string(npts) + " random points on the unit sphere, convex hull re-meshed with tetgen -" +
+              std::string(sw) + ": " +
               std::to_string(out2.numberofpoints) + " vertices (" + std::to_string(out2.numberofpoints - npts) +
               " interior Steiner points), " + std::to_string(out2.numberoftetrahedra) + " tets";
     return true;
 }
 
 #endif  // BODT_BENCH_WITH_TETGEN
+
+// The jittered Kuhn box of side n; stretch != 1: the same box (the same
+// jitter) with every x coordinate multiplied by stretch, so its tets are
+// anisotropic (the cube becomes stretch x 1 x 1).
+constexpr double kBoxStretch = 1.5;
+
+Case box_case(int n, double stretch) {
+    Case c;
+    const bool stretched = stretch != 1.0;
+    c.name = "box" + std::to_string(n) + (stretched ? ".stretch" : ".jitter");
+    c.kind = stretched ? "box-stretched" : "box";
+    char what[64];
+    std::snprintf(what, sizeof what, ", x stretched %gx", stretch);
+    c.source = "unit cube, " + std::to_string(n) + "^3 Kuhn cubes (" + std::to_string(6L * n * n * n) +
+               " tets), interior vertices jittered" + (stretched ? std::string(what) : std::string());
+    c.prepare = [n, stretch, stretched](PreparedMesh& pm, std::string& err) {
+        pm.from_file = false;
+        if (!make_jittered_box(n, 0.35, 0xb0d7b0c5ULL + uint64_t(n), pm.arrays, pm.note)) {
+            err = pm.note;
+            return false;
+        }
+        if (stretched) {
+            for (size_t i = 0; i < pm.arrays.xyz.size(); i += 3) pm.arrays.xyz[i] *= stretch;
+            char b[64];
+            std::snprintf(b, sizeof b, "; then x multiplied by %g", stretch);
+            pm.note += b;
+        }
+        return true;
+    };
+    return c;
+}
 
 // A tet mesh file for bodt_mesh_read.
 bool prepare_file(const std::string& path, const std::string& temp_dir, PreparedMesh& pm, std::string& err) {
@@ -546,9 +577,24 @@ bool gunzip_file(const std::string& src, const std::string& dest, std::string& e
 #endif
 }
 
+std::vector<int> scale_box_sizes(double max_tets) {
+    std::vector<int> out;
+    for (int n : {12, 26, 55, 119})
+        if (6.0 * n * n * n <= 1.02 * max_tets) out.push_back(n);
+    return out;
+}
+
 std::vector<Case> make_cases(const CaseOptions& opt, std::vector<std::string>& notes) {
     std::vector<Case> cases;
     const std::string temp_dir = opt.temp_dir;
+
+    if (opt.scale) {  // the scale series alone: jittered, then stretched boxes
+        const std::vector<int> sizes = scale_box_sizes(opt.scale_max);
+        if (sizes.empty()) notes.push_back("--scale-max below the smallest box (10368 tets): no case");
+        for (double stretch : {1.0, kBoxStretch})
+            for (int n : sizes) cases.push_back(box_case(n, stretch));
+        return cases;
+    }
 
     // (a) TetGen meshes of surfaces, like `tetgen -pQ` and `tetgen -pqQ`.
     std::vector<std::string> surfaces;
@@ -621,15 +667,23 @@ std::vector<Case> make_cases(const CaseOptions& opt, std::vector<std::string>& n
         c.name = "sphere642.Q";
         c.kind = "random-sphere";
         c.source = "642 random points on the unit sphere, Delaunay (tetgen -Q)";
-        c.prepare = [](PreparedMesh& pm, std::string& err) { return random_sphere(0.0, pm, err); };
+        c.prepare = [](PreparedMesh& pm, std::string& err) { return random_sphere(642, 0.0, pm, err); };
         cases.push_back(c);
         // The bound 7 gives 85 interior Steiner points (the paper's mesh: 87).
         Case r;
         r.name = "sphere642.pq7Y";
         r.kind = "random-sphere";
         r.source = "642 random points on the unit sphere, hull re-meshed with tetgen -pq7YQ";
-        r.prepare = [](PreparedMesh& pm, std::string& err) { return random_sphere(7.0, pm, err); };
+        r.prepare = [](PreparedMesh& pm, std::string& err) { return random_sphere(642, 7.0, pm, err); };
         cases.push_back(r);
+        if (opt.large) {  // ten times the points: a larger random sphere
+            Case l;
+            l.name = "sphere6420.pq7Y";
+            l.kind = "random-sphere";
+            l.source = "6420 random points on the unit sphere, hull re-meshed with tetgen -pq7YQ";
+            l.prepare = [](PreparedMesh& pm, std::string& err) { return random_sphere(6420, 7.0, pm, err); };
+            cases.push_back(l);
+        }
     }
 #else
     notes.push_back("skipped the random sphere: bodt_bench was built without TetGen");
@@ -658,19 +712,7 @@ std::vector<Case> make_cases(const CaseOptions& opt, std::vector<std::string>& n
     // (e) jittered Kuhn boxes.
     std::vector<int> boxes = {12};  // 10368 tets
     if (opt.large) boxes.push_back(26);  // 105456 tets
-    for (int n : boxes) {
-        Case c;
-        c.name = "box" + std::to_string(n) + ".jitter";
-        c.kind = "box";
-        c.source = "unit cube, " + std::to_string(n) + "^3 Kuhn cubes (" + std::to_string(6 * n * n * n) +
-                   " tets), interior vertices jittered";
-        c.prepare = [n](PreparedMesh& pm, std::string& err) {
-            pm.from_file = false;
-            return make_jittered_box(n, 0.35, 0xb0d7b0c5ULL + uint64_t(n), pm.arrays, pm.note) ||
-                   (err = pm.note, false);
-        };
-        cases.push_back(c);
-    }
+    for (int n : boxes) cases.push_back(box_case(n, 1.0));
     return cases;
 }
 

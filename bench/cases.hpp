@@ -32,7 +32,7 @@ struct PreparedMesh {
 struct Case {
     std::string name;    // unique, file-name safe
     std::string kind;    // "tetgen-surface", "file", "random-sphere", "random-lazy",
-                         // "box"
+                         // "box", "box-stretched"
     std::string source;  // the input file or a description
     // Makes the mesh; returns false with a message on failure.
     std::function<bool(PreparedMesh&, std::string&)> prepare;
@@ -40,12 +40,21 @@ struct Case {
 
 struct CaseOptions {
     std::string shared_dir;      // "" = no shared meshes
-    bool large = false;          // add the ~1e5-tet box and the ~1.5e5-tet lazy cube
+    bool large = false;          // add the ~1e5-tet box, the ~1.5e5-tet lazy cube and the 6420-point sphere
+    // The scale series instead of the bench set: jittered and stretched
+    // Kuhn boxes of n = 12, 26, 55, 119 (6 n^3 tets) up to scale_max tets.
+    bool scale = false;
+    double scale_max = 1e6;
     bool with_tetgen = false;    // filled in by the program (compiled with TetGen?)
     std::string temp_dir;        // where .gz files are decompressed
     std::vector<std::string> extra_surfaces;  // --surface FILE
     std::vector<std::string> extra_meshes;    // --mesh FILE
 };
+
+// The sides n of the scale series' boxes (6 n^3 tets: about 1e4, 1e5, 1e6,
+// 1e7) whose tet count is at most max_tets (with 2% slack: n = 119 makes
+// 10 110 954 tets for 1e7).
+std::vector<int> scale_box_sizes(double max_tets);
 
 // The bench set.  notes receives one line per input that was skipped (VTK
 // files, missing directories, no TetGen).

@@ -5,7 +5,6 @@
 #include "bodt.h"
 #include "cases.hpp"
 #include "hole_box.hpp"
-#include "surface_distance.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -86,8 +85,7 @@ bool prepare_file(const std::string& path, const std::string& temp_dir, double s
     }
     const double mid = 0.5 * (lo + hi);
     std::vector<char> on_boundary(size_t(nv), 0);
-    for (const auto& f : boundary_triangles(m.tets, 0))
-        for (int32_t v : f) on_boundary[size_t(v)] = 1;
+    for (int32_t v : boundary_triangles(m.tets, 0)) on_boundary[size_t(v)] = 1;
     m.deformed = m.original;
     int32_t moved = 0;
     for (size_t v = 0; v < size_t(nv); ++v)

@@ -95,10 +95,12 @@ enum bodt_create_flag {
  *   index_base  0 (C, Python) or 1 (Fortran)
  *   mesh        receives the handle, or NULL on failure
  *
- * The input is validated: finite coordinates, indices in range and distinct
- * within a tet, no duplicate tets, no face shared by more than two tets, no
- * two tets on the same side of a shared face, a manifold boundary surface, no
- * zero-volume tets and (without BODT_CREATE_ACCEPT_INVERTED) no inverted tet.
+ * The input is validated: finite coordinates within +-1e30, indices in
+ * range and distinct within a tet, no duplicate tets, no face shared by more
+ * than two tets, no two tets on the same side of a shared face, a manifold
+ * boundary surface, no zero-volume tets (flat within round-off, or less than
+ * about 1e-30 across) and (without BODT_CREATE_ACCEPT_INVERTED) no inverted
+ * tet.
  * A mesh whose tets are all negatively oriented (the convention of some
  * tools) is not inverted: its orientation is detected, the mesh is handled
  * internally with positive orientation, and output tets come back in the
@@ -151,8 +153,8 @@ BODT_API int bodt_mesh_set_fixed_vertices(bodt_mesh *mesh, int32_t nfixed,
 
 /*
  * Feature edges (sharp CAD edges, ridges): 2 * nedges vertex indices.  Each
- * must be an edge of a boundary or interface face.  In BODT_MODE_BODT their
- * vertices move only along the feature line, and where they end, branch or
+ * must be an edge of a boundary or interface face.  In BODT_MODE_BODT and
+ * BODT_MODE_NODT their vertices move only along the feature line, and where they end, branch or
  * turn sharply the vertex is a corner; edges found by the feature-angle test
  * are added to these.  Replaces an earlier list.
  */
@@ -248,9 +250,9 @@ enum bodt_vertex_class {
     BODT_VERTEX_UNUSED = 5        /* in no tet                              */
 };
 /* nverts classes (enum bodt_vertex_class).  Feature lines and corners are
- * found in BODT_MODE_BODT only; the other modes see every boundary and
- * interface vertex as BODT_VERTEX_SURFACE.  The caller's corners are
- * BODT_VERTEX_CORNER in every mode. */
+ * found in BODT_MODE_BODT and BODT_MODE_NODT only; the other modes see
+ * every boundary and interface vertex as BODT_VERTEX_SURFACE.  The caller's
+ * corners are BODT_VERTEX_CORNER in every mode. */
 BODT_API int bodt_mesh_get_vertex_classes(const bodt_mesh *mesh,
                                           int32_t *classes, size_t capacity);
 
@@ -333,7 +335,9 @@ BODT_API int bodt_mesh_tet_quality(const bodt_mesh *mesh, int measure,
  * inverted or flat, no boundary triangle flips.  Boundary and interface
  * vertices move only in BODT_MODE_BODT_BASIC and BODT_MODE_BODT, and then
  * only in their tangent plane or along their feature line, which keeps the
- * volume of every region (paper 000, Appendix B).
+ * volume of every region (paper 000, Appendix B); in BODT_MODE_NODT, which
+ * projects them back onto the input surface (the volume changes a little);
+ * and in BODT_MODE_PHASED_ODT, on their fitted shapes.
  */
 enum bodt_mode {
     /* Guarded Laplacian smoothing: each interior vertex moves towards the
@@ -372,7 +376,16 @@ enum bodt_mode {
      * interior vertices in space; then surface flips (as split + collapse)
      * and Delaunay flips (sec. 3.4.4).  Surface vertices stay on their
      * fitted shapes; regions fitted by neither shape keep their vertices. */
-    BODT_MODE_PHASED_ODT = 6
+    BODT_MODE_PHASED_ODT = 6,
+    /* Natural ODT (Tournois, Wormser, Alliez, Desbrun 2009; the comparison
+     * column of paper 000 Table 1): every vertex moves to eq. (3) over its
+     * star as it is, then boundary and interface vertices are projected
+     * back onto the input surface (as it was when NODT first ran), each
+     * onto its patch between feature edges, feature-line vertices onto
+     * their line; corners and fixed vertices stay, classes as in
+     * BODT_MODE_BODT.  The volume is NOT kept: on a curved boundary the
+     * vertices slide over the input surface's creases. */
+    BODT_MODE_NODT = 7
 };
 
 BODT_API int bodt_set_mode(bodt_mesh *mesh, int mode);
@@ -414,8 +427,8 @@ enum bodt_param {
      * 001 sec. 2) and SMOOTH for the other modes. */
     BODT_PARAM_OPS = 8,
     /* int 0/1, default 0: 1 keeps every boundary and interface triangle as
-     * it is (no split, flip or collapse there); BODT_MODE_LAPLACE and
-     * BODT_MODE_ODT always keep them.  Otherwise only flat parts of the
+     * it is (no split, flip or collapse there); only BODT_MODE_BODT_BASIC
+     * and BODT_MODE_BODT change them otherwise, and only flat parts of the
      * surface are retriangulated, with their markers, and only splits put
      * new vertices on the surface: its shape never changes. */
     BODT_PARAM_KEEP_SURFACE = 9,
@@ -467,7 +480,14 @@ enum bodt_param {
      * default takes coordinates written with six digits and refuses
      * patches of free-form surfaces (a sphere's), which keep their
      * vertices. */
-    BODT_PARAM_FIT_TOLERANCE = 21
+    BODT_PARAM_FIT_TOLERANCE = 21,
+    /* int in [0, 1024], default 1: threads of a smoothing sweep (OpenMP);
+     * 0 takes OpenMP's default (OMP_NUM_THREADS, else every core).  Vertices
+     * are swept colour by colour, so the result is the same for any number
+     * of threads.  One by default: a solver running a process per core (MPI)
+     * would otherwise have more threads than cores, and a sweep waits for
+     * its slowest thread once per colour. */
+    BODT_PARAM_THREADS = 22
 };
 
 /*

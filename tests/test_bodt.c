@@ -434,8 +434,9 @@ static void test_fixed_vertices_all_modes(void **state) {
                              grid_vertex(N, 1, 1, 1), grid_vertex(N, 2, 2, 2), grid_vertex(N, 3, 1, 2),
                              grid_vertex(N, 4, 2, 3)};
     const int nfixed = (int)(sizeof fixed / sizeof fixed[0]);
-    static const int modes[4] = {BODT_MODE_LAPLACE, BODT_MODE_ODT, BODT_MODE_BODT_BASIC, BODT_MODE_BODT};
-    for (int mi = 0; mi < 4; ++mi) {
+    static const int modes[5] = {BODT_MODE_LAPLACE, BODT_MODE_ODT, BODT_MODE_BODT_BASIC, BODT_MODE_BODT,
+                                 BODT_MODE_NODT};
+    for (int mi = 0; mi < 5; ++mi) {
         bodt_mesh *h = create(m, modes[mi]);
         assert_int_equal(bodt_mesh_set_fixed_vertices(h, nfixed, fixed), BODT_OK);
         assert_int_equal(bodt_set_param_int(h, BODT_PARAM_NEVER_WORSE, 0), BODT_OK);
@@ -494,7 +495,9 @@ static void test_classes_box(void **state) {
         for (int32_t v = 0; v < m->nverts; ++v)
             assert_int_equal(c[v], m->boundary[v] ? BODT_VERTEX_SURFACE : BODT_VERTEX_INTERIOR);
     }
-    /* and back */
+    /* NODT classifies as BODT does; and back */
+    assert_int_equal(bodt_set_mode(h, BODT_MODE_NODT), BODT_OK);
+    expect_classes_by_axes(&s, get_classes(h, m->nverts), "box, NODT");
     assert_int_equal(bodt_set_mode(h, BODT_MODE_BODT), BODT_OK);
     expect_classes_by_axes(&s, get_classes(h, m->nverts), "box again");
 

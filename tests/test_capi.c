@@ -13,6 +13,8 @@
 #include "mesh_gen.h"
 #include "test_util.h"
 
+#include <float.h>
+#include <math.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -559,7 +561,8 @@ static void test_corners_refs_and_base(void **state) {
     assert_int_equal(bodt_mesh_set_fixed_vertices(h1, 1, fixed), BODT_OK);
     assert_int_equal(bodt_mesh_get_corners(h1, flags, nv), BODT_OK);
     for (int32_t v = 0; v < m.nverts; ++v) assert_int_equal(flags[v], v == 0 || v == 21 || v == m.nverts - 1);
-    const int modes[] = {BODT_MODE_BODT, BODT_MODE_ODT, BODT_MODE_LAPLACE, BODT_MODE_OPT_WEIGHTED, BODT_MODE_PHASED_ODT, BODT_MODE_BODT_BASIC};
+    const int modes[] = {BODT_MODE_BODT,         BODT_MODE_ODT,        BODT_MODE_LAPLACE, BODT_MODE_OPT_WEIGHTED,
+                         BODT_MODE_PHASED_ODT, BODT_MODE_BODT_BASIC, BODT_MODE_NODT};
     for (size_t k = 0; k < sizeof modes / sizeof *modes; ++k) {
         assert_int_equal(bodt_set_mode(h1, modes[k]), BODT_OK);
         assert_int_equal(bodt_mesh_get_vertex_classes(h1, cls, nv), BODT_OK);
@@ -806,6 +809,70 @@ static void test_create_zero_volume(void **state) {
         free(t);
     }
     tm_free(&m);
+}
+
+/* The box scaled by `scale`: a copy of its coordinates. */
+static double *scaled_xyz(const test_mesh *m, double scale) {
+    double *xyz = malloc(3 * (size_t)m->nverts * sizeof *xyz);
+    assert_non_null(xyz);
+    for (int32_t i = 0; i < 3 * m->nverts; ++i) xyz[i] = m->xyz[i] * scale;
+    return xyz;
+}
+
+/* Coordinates beyond 1e30 are refused: the quality measures multiply up to
+ * eight coordinate differences, which would overflow (the library fuzzer
+ * found DBL_MAX accepted and its quality NaN).  Up to 1e30 is fine. */
+static void test_create_huge_coordinates(void **state) {
+    (void)state;
+    test_mesh m;
+    assert_int_equal(tm_make_box(&m, 2, 0.1, 4), 0);
+    bodt_quality unit, big;
+    bodt_mesh *h = NULL;
+    assert_int_equal(bodt_mesh_create(m.nverts, m.xyz, m.ntets, m.tets, 0, &h), BODT_OK);
+    get_quality(h, &unit);
+    bodt_mesh_destroy(h);
+    double *xyz = scaled_xyz(&m, 1e29);
+    assert_int_equal(bodt_mesh_create(m.nverts, xyz, m.ntets, m.tets, 0, &h), BODT_OK);
+    get_quality(h, &big);
+    assert_true(fabs(big.min_dihedral - unit.min_dihedral) < 1e-9 && fabs(big.min_stretch - unit.min_stretch) < 1e-12);
+    bodt_mesh_destroy(h);
+    free(xyz);
+    const double huge[3] = {DBL_MAX, -1e31, 2e30};
+    for (int k = 0; k < 3; ++k) {
+        xyz = scaled_xyz(&m, 1.0);
+        xyz[3 * 7 + k] = huge[k];
+        expect_create_failure(m.nverts, xyz, m.ntets, m.tets, 0, 0, BODT_ERR_BAD_MESH, "vertex 7 has a coordinate",
+                              "beyond 1e30");
+        free(xyz);
+    }
+    tm_free(&m);
+}
+
+/* A tet less than about 1e-30 across, or a sliver whose volume is a
+ * denormal number, is flat: orientation and quality would underflow (the
+ * library fuzzer found a denormal sliver accepted with volume 0). */
+static void test_create_tiny_tets(void **state) {
+    (void)state;
+    test_mesh m;
+    assert_int_equal(tm_make_box(&m, 2, 0.1, 4), 0);
+    double *xyz = scaled_xyz(&m, 1e-25);
+    bodt_mesh *h = NULL;
+    assert_int_equal(bodt_mesh_create(m.nverts, xyz, m.ntets, m.tets, 0, &h), BODT_OK);
+    bodt_quality q;
+    get_quality(h, &q);
+    assert_true(q.min_stretch > 0.1 && q.volume > 0.0);
+    bodt_mesh_destroy(h);
+    free(xyz);
+    xyz = scaled_xyz(&m, 1e-32);
+    expect_create_failure(m.nverts, xyz, m.ntets, m.tets, 0, 0, BODT_ERR_BAD_MESH, "zero volume", NULL);
+    free(xyz);
+    tm_free(&m);
+
+    const double d = 4.9406564584124654e-324; /* the smallest denormal */
+    const double sliver[] = {0, 0, 1, 0, 1, 1, d, 1, -2, 0, 0.5, 2};
+    const int32_t tet[] = {0, 1, 2, 3};
+    for (unsigned flags = 0; flags <= BODT_CREATE_ACCEPT_INVERTED; flags += BODT_CREATE_ACCEPT_INVERTED)
+        expect_create_failure(4, sliver, 1, tet, 0, flags, BODT_ERR_BAD_MESH, "1 tet has zero volume", NULL);
 }
 
 static void swap_last_two(int32_t *tets, int32_t t) {
@@ -1389,16 +1456,16 @@ static void test_params(void **state) {
     assert_int_equal(iv, 0);
 
     /* modes */
-    const int modes[] = {BODT_MODE_ODT, BODT_MODE_BODT_BASIC, BODT_MODE_BODT, BODT_MODE_OPT_WEIGHTED,
-                         BODT_MODE_PHASED_ODT, BODT_MODE_LAPLACE};
-    for (int k = 0; k < 6; ++k) {
+    const int modes[] = {BODT_MODE_ODT,        BODT_MODE_BODT_BASIC, BODT_MODE_BODT, BODT_MODE_OPT_WEIGHTED,
+                         BODT_MODE_PHASED_ODT, BODT_MODE_NODT,       BODT_MODE_LAPLACE};
+    for (size_t k = 0; k < sizeof modes / sizeof *modes; ++k) {
         assert_int_equal(bodt_set_mode(h, modes[k]), BODT_OK);
         assert_int_equal(bodt_get_mode(h, &mode), BODT_OK);
         assert_int_equal(mode, modes[k]);
     }
     assert_int_equal(bodt_set_mode(h, 0), E);
     assert_contains(bodt_mesh_last_error(h), "mode");
-    assert_int_equal(bodt_set_mode(h, 7), E);
+    assert_int_equal(bodt_set_mode(h, 8), E);
     assert_int_equal(bodt_set_mode(h, -1), E);
     assert_int_equal(bodt_get_mode(h, &mode), BODT_OK);
     assert_int_equal(mode, BODT_MODE_LAPLACE);
@@ -1543,6 +1610,8 @@ int main(void) {
         cmocka_unit_test(test_create_repeated_index),
         cmocka_unit_test(test_create_non_finite),
         cmocka_unit_test(test_create_zero_volume),
+        cmocka_unit_test(test_create_huge_coordinates),
+        cmocka_unit_test(test_create_tiny_tets),
         cmocka_unit_test(test_create_inverted),
         cmocka_unit_test(test_create_inverted_by_geometry),
         cmocka_unit_test(test_create_inverted_in_negative_convention),

@@ -168,7 +168,7 @@ static void test_params(void **state) {
     assert_int_equal(mode, 5);
     assert_int_equal(bodt_get_param_int(h, BODT_PARAM_OPS, &iv), BODT_OK);
     assert_int_equal(iv, BODT_OPS_MODE_DEFAULT);
-    assert_int_equal(bodt_set_mode(h, 7), E);
+    assert_int_equal(bodt_set_mode(h, 8), E);
     assert_int_equal(bodt_set_mode(h, 0), E);
     assert_int_equal(bodt_get_mode(h, &mode), BODT_OK);
     assert_int_equal(mode, BODT_MODE_OPT_WEIGHTED);

@@ -597,7 +597,7 @@ static void test_bad_input(void **state) {
     assert_int_equal(mode, 6);
     assert_int_equal(bodt_get_param_int(h, BODT_PARAM_OPS, &iv), BODT_OK);
     assert_int_equal(iv, BODT_OPS_MODE_DEFAULT);
-    assert_int_equal(bodt_set_mode(h, 7), E);
+    assert_int_equal(bodt_set_mode(h, 8), E);
     assert_int_equal(bodt_get_mode(h, &mode), BODT_OK);
     assert_int_equal(mode, BODT_MODE_PHASED_ODT);
 

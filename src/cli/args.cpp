@@ -91,7 +91,8 @@ struct Named {
 
 constexpr Named kModes[] = {{"bodt", BODT_MODE_BODT},       {"bodt-basic", BODT_MODE_BODT_BASIC},
                             {"odt", BODT_MODE_ODT},         {"laplace", BODT_MODE_LAPLACE},
-                            {"opt-weighted", BODT_MODE_OPT_WEIGHTED}, {"phased", BODT_MODE_PHASED_ODT}};
+                            {"opt-weighted", BODT_MODE_OPT_WEIGHTED}, {"phased", BODT_MODE_PHASED_ODT},
+                            {"nodt", BODT_MODE_NODT}};
 
 constexpr Named kOps[] = {
     {"smooth", BODT_OP_SMOOTH}, {"flip", BODT_OP_FLIP}, {"insert", BODT_OP_INSERT}, {"collapse", BODT_OP_COLLAPSE}};
@@ -220,6 +221,7 @@ const std::vector<ParamInfo>& param_table() {
         {"density_split", BODT_PARAM_DENSITY_SPLIT, false},
         {"density_collapse", BODT_PARAM_DENSITY_COLLAPSE, false},
         {"fit_tolerance", BODT_PARAM_FIT_TOLERANCE, false},
+        {"threads", BODT_PARAM_THREADS, true},
     };
     return table;
 }

@@ -2,9 +2,8 @@
 // `bodt compare`.
 //
 // H(A, B) = max(sup_{a in A} d(a, B), sup_{b in B} d(b, A)), d(x, S) the
-// exact distance from the point x to the nearest triangle of S (closest
-// point on a triangle, Ericson, Real-Time Collision Detection 5.1.5; the
-// nearest triangle found through a bounding-box tree).
+// exact distance from the point x to the nearest triangle of S (the core's
+// closest-point tree, bodt::SurfaceBvh in src/mesh/surface_bvh.hpp).
 //
 // The suprema run over whole triangles, not only vertices: a dent of B may
 // lie under the middle of a triangle of A.  They are bounded by branch and

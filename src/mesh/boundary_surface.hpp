@@ -7,11 +7,16 @@
 
 #include "mesh/tet_mesh.hpp"
 
-// OpenMesh 9's property code trips GCC 12's -Wmaybe-uninitialized.
+// OpenMesh 9's property code trips GCC 12's -Wmaybe-uninitialized (which
+// clang, building the fuzzers, does not have).
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 
 #include <vector>
 

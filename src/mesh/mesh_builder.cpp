@@ -4,6 +4,7 @@
 #include "common/error.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace bodt {
@@ -17,6 +18,14 @@ std::string list_offenders(const std::vector<int32_t>& ids, int base) {
     for (size_t k = 0; k < shown; ++k) s += (k ? ", " : "") + std::to_string(ids[k] + base);
     if (ids.size() > shown) s += ", ...";
     return s;
+}
+
+constexpr double kMaxCoordinate = 1e30;
+
+std::string format_double(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return text;
 }
 
 std::string plural(size_t n, const char* one, const char* many) {
@@ -46,6 +55,12 @@ void copy_points(const MeshArrays& in, TetMesh& mesh) {
                 throw Error(BODT_ERR_BAD_MESH, "vertex " + std::to_string(v + in.index_base) +
                                                    " has a non-finite coordinate (" + axis[k] + " = " +
                                                    std::to_string(c) + ")");
+            // The quality measures multiply up to eight coordinate
+            // differences (a dihedral angle's two squared face normals).
+            if (std::abs(c) > kMaxCoordinate)
+                throw Error(BODT_ERR_BAD_MESH, "vertex " + std::to_string(v + in.index_base) + " has a coordinate (" +
+                                                   axis[k] + " = " + format_double(c) +
+                                                   ") beyond 1e30, where the quality measures overflow");
             mesh.points[v][k] = c;
         }
     }

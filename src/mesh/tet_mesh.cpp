@@ -36,45 +36,70 @@ void TetMesh::build_incidence() {
         for (int32_t v : tets[t]) vt_tets[fill[v]++] = t;
 }
 
-// Faces are matched through the incidence of their first vertex: for face i
-// of tet t, every other tet around that vertex that holds the face is a
-// neighbour.  Each tet pair is found from both sides, which also lets us see
-// a third tet on the same face.
-void TetMesh::build_neighbors(int base) {
+// Faces are matched through the incidence of one of their vertices (the one
+// in the fewest tets): for face i of tet t, every other tet around that
+// vertex that holds the face is its neighbour.  Each tet finds its own
+// neighbours, so the tets may be shared among threads; a face in three tets
+// or two tets with the same vertices is reported for the lowest tet that
+// shows it, whatever the number of threads.
+namespace {
+
+struct FaceMatch {
+    int32_t found = -1, local = -1;  // the neighbour and its vertex opposite the face
+    int32_t third = -1;              // a third tet on the face: an error
+};
+
+FaceMatch match_face(const TetMesh& mesh, int32_t t, int i) {
+    const auto f = face_of(mesh.tets[t], i);
+    int32_t pivot = f[0];
+    for (const int32_t v : {f[1], f[2]})
+        if (mesh.star_end(v) - mesh.star_begin(v) < mesh.star_end(pivot) - mesh.star_begin(pivot)) pivot = v;
+    FaceMatch m;
+    for (const int32_t* s = mesh.star_begin(pivot); s != mesh.star_end(pivot); ++s) {
+        if (*s == t) continue;
+        const Tet& q = mesh.tets[*s];
+        int hits = 0, missing = -1;
+        for (int k = 0; k < 4; ++k) {
+            if (q[k] == f[0] || q[k] == f[1] || q[k] == f[2]) ++hits;
+            else missing = k;
+        }
+        if (hits < 3) continue;
+        if (m.found != -1) {
+            m.third = *s;
+            return m;
+        }
+        m.found = *s;
+        m.local = missing;
+    }
+    return m;
+}
+
+}  // namespace
+
+void TetMesh::build_neighbors(int base, int threads) {
     const int32_t nt = num_tets();
     neighbors.assign(tets.size(), Tet{-1, -1, -1, -1});
-    for (int32_t t = 0; t < nt; ++t) {
+    int32_t first_bad = nt;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(min : first_bad)
+    for (int32_t t = 0; t < nt; ++t)
         for (int i = 0; i < 4; ++i) {
-            if (neighbors[t][i] != -1) continue;
-            const auto f = face_of(tets[t], i);
-            int32_t found = -1;
-            int found_local = -1;
-            for (const int32_t* s = star_begin(f[0]); s != star_end(f[0]); ++s) {
-                if (*s == t) continue;
-                const Tet& q = tets[*s];
-                int hits = 0, missing = -1;
-                for (int k = 0; k < 4; ++k) {
-                    if (q[k] == f[0] || q[k] == f[1] || q[k] == f[2]) ++hits;
-                    else missing = k;
-                }
-                if (hits < 3) continue;
-                if (found != -1)
-                    throw Error(BODT_ERR_BAD_MESH,
-                                "face (" + std::to_string(f[0] + base) + ", " + std::to_string(f[1] + base) + ", " +
-                                    std::to_string(f[2] + base) + ") is shared by more than two tets: " +
-                                    std::to_string(t + base) + ", " + std::to_string(found + base) + " and " +
-                                    std::to_string(*s + base));
-                found = *s;
-                found_local = missing;
-            }
-            if (found == -1) continue;
-            const Tet& q = tets[found];
-            if (q[found_local] == tets[t][i])
-                throw Error(BODT_ERR_BAD_MESH, "tets " + std::to_string(t + base) + " and " +
-                                                   std::to_string(found + base) + " have the same vertices");
-            neighbors[t][i] = found;
-            neighbors[found][found_local] = t;
+            const FaceMatch m = match_face(*this, t, i);
+            if (m.third != -1 || (m.found != -1 && tets[m.found][m.local] == tets[t][i])) first_bad = std::min(first_bad, t);
+            neighbors[t][i] = m.found;
         }
+    if (first_bad == nt) return;
+    const int32_t t = first_bad;
+    for (int i = 0; i < 4; ++i) {
+        const FaceMatch m = match_face(*this, t, i);
+        const auto f = face_of(tets[t], i);
+        if (m.third != -1)
+            throw Error(BODT_ERR_BAD_MESH, "face (" + std::to_string(f[0] + base) + ", " + std::to_string(f[1] + base) +
+                                               ", " + std::to_string(f[2] + base) + ") is shared by more than two tets: " +
+                                               std::to_string(t + base) + ", " + std::to_string(m.found + base) +
+                                               " and " + std::to_string(m.third + base));
+        if (m.found != -1 && tets[m.found][m.local] == tets[t][i])
+            throw Error(BODT_ERR_BAD_MESH, "tets " + std::to_string(t + base) + " and " +
+                                               std::to_string(m.found + base) + " have the same vertices");
     }
 }
 
@@ -111,9 +136,9 @@ void TetMesh::update_vertex_flags() {
     }
 }
 
-void TetMesh::build_topology(int base) {
+void TetMesh::build_topology(int base, int threads) {
     build_incidence();
-    build_neighbors(base);
+    build_neighbors(base, threads);
     update_vertex_flags();
 }
 

@@ -116,9 +116,10 @@ public:
     bool is_interior_free(int32_t v) const { return vflags[v] == 0; }
 
     // Rebuild incidence, neighbours and vertex flags from points, tets,
-    // regions and markers.  Throws Error(BODT_ERR_BAD_MESH) with a message
-    // using index base `base` when the connectivity is not a valid mesh.
-    void build_topology(int base);
+    // regions and markers (the neighbours on `threads` OpenMP threads).
+    // Throws Error(BODT_ERR_BAD_MESH) with a message using index base
+    // `base` when the connectivity is not a valid mesh.
+    void build_topology(int base, int threads = 1);
 
     // Recompute the boundary, interface and unused bits of vflags (the fixed
     // bit is kept), after regions or markers changed.
@@ -146,7 +147,7 @@ public:
 
 private:
     void build_incidence();
-    void build_neighbors(int base);
+    void build_neighbors(int base, int threads);
     bool is_listed_face(int32_t t, int i) const;
 };
 

@@ -4,8 +4,10 @@
 #include "common/error.hpp"
 #include "quality/mesh_quality.hpp"
 #include "smoothing/bodt_smoother.hpp"
+#include "smoothing/coloured_sweep.hpp"
 #include "smoothing/laplace.hpp"
 #include "smoothing/move_guard.hpp"
+#include "smoothing/nodt.hpp"
 #include "smoothing/opt_weighted.hpp"
 #include "topology/topology_pass.hpp"
 
@@ -27,11 +29,38 @@ void count_outcome(MoveOutcome outcome, double distance, StepReport& report) {
     report.max_move = std::max(report.max_move, distance);
 }
 
+// One vertex of a B-ODT or NODT sweep: `plan(target)` says where it goes,
+// `move(target, distance)` takes it there through the guard.
+template <class PlanFn, class MoveFn>
+void smooth_vertex(PlanFn plan, MoveFn move, StepReport& report) {
+    Vec3 target;
+    switch (plan(target)) {
+        case Plan::Stay: return;
+        case Plan::NotPositiveDefinite: ++report.not_positive_definite; return;
+        case Plan::Move: break;
+    }
+    double distance = 0.0;
+    const MoveOutcome outcome = move(target, distance);
+    count_outcome(outcome, distance, report);
+}
+
+// Adds the sweep counters of each thread's report to `report`.
+template <class State>
+void merge_counts(const std::vector<State>& states, StepReport& report) {
+    for (const State& s : states) {
+        report.vertices_moved += s.report.vertices_moved;
+        report.moves_rejected += s.report.moves_rejected;
+        report.moves_shortened += s.report.moves_shortened;
+        report.not_positive_definite += s.report.not_positive_definite;
+        report.max_move = std::max(report.max_move, s.report.max_move);
+    }
+}
+
 }  // namespace
 
 void Improver::set_mode(int mode) {
     if (mode != BODT_MODE_LAPLACE && mode != BODT_MODE_ODT && mode != BODT_MODE_BODT_BASIC && mode != BODT_MODE_BODT &&
-        mode != BODT_MODE_OPT_WEIGHTED && mode != BODT_MODE_PHASED_ODT)
+        mode != BODT_MODE_OPT_WEIGHTED && mode != BODT_MODE_PHASED_ODT && mode != BODT_MODE_NODT)
         throw Error(BODT_ERR_INVALID_ARGUMENT, "unknown mode " + std::to_string(mode));
     mode_ = mode;
     classes_valid_ = false;
@@ -57,45 +86,85 @@ const VertexClasses& Improver::classes(const TetMesh& mesh, const RegionSurfaces
         settings.feature_angle_deg = params_.feature_angle;
         settings.edge_ratio = params_.edge_ratio;
         settings.corner_ratio = params_.corner_ratio;
-        settings.detect_features = mode_ == BODT_MODE_BODT;
+        settings.detect_features = mode_ == BODT_MODE_BODT || mode_ == BODT_MODE_NODT;
         classes_ = classify_vertices(mesh, surfaces, settings);
         classes_valid_ = true;
     }
     return classes_;
 }
 
+GuardSettings Improver::guard_settings() const {
+    return {params_.min_stretch, params_.backtrack_steps, params_.never_worse != 0};
+}
+
 void Improver::sweep_laplace(TetMesh& mesh, StepReport& report) const {
-    MoveGuard guard({params_.min_stretch, params_.backtrack_steps, params_.never_worse != 0});
-    std::vector<int32_t> scratch;
+    struct State {
+        MoveGuard guard;
+        std::vector<int32_t> scratch;
+        StepReport report;
+    };
     const std::vector<FaceKey> no_faces;
-    for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
-        if (!mesh.is_interior_free(v)) continue;
-        const Vec3 target = laplace_target(mesh, v, scratch);
-        double distance = 0.0;
-        const MoveOutcome outcome = guard.move(mesh, v, target, no_faces, distance);
-        count_outcome(outcome, distance, report);
-    }
+    const int threads = sweep_threads(params_.threads, mesh.tets.size());
+    ShapeCache shapes = tet_shapes(mesh, threads);
+    const auto states = coloured_sweep(
+        colour_vertices(mesh), threads, State{MoveGuard(guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
+            if (!mesh.is_interior_free(v)) return;
+            const Vec3 target = laplace_target(mesh, v, s.scratch);
+            double distance = 0.0;
+            const MoveOutcome outcome = s.guard.move(mesh, v, target, no_faces, distance);
+            count_outcome(outcome, distance, s.report);
+        });
+    merge_counts(states, report);
 }
 
 // ODT, B-ODT basic and B-ODT: the modes differ only in which vertices move
 // (ODT: inner ones) and how the surface vertices were classified.
 void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const {
     const VertexClasses& cls = classes(mesh, surfaces);
-    BodtSmoother smoother(surfaces, cls);
-    MoveGuard guard({params_.min_stretch, params_.backtrack_steps, params_.never_worse != 0});
-    std::vector<FaceKey> faces;
-    for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
-        if (mode_ == BODT_MODE_ODT && cls.cls[v] != VertexClass::Interior) continue;
-        Vec3 target;
-        switch (smoother.target(mesh, v, target, faces)) {
-            case Plan::Stay: continue;
-            case Plan::NotPositiveDefinite: ++report.not_positive_definite; continue;
-            case Plan::Move: break;
-        }
-        double distance = 0.0;
-        const MoveOutcome outcome = guard.move(mesh, v, target, faces, distance);
-        count_outcome(outcome, distance, report);
-    }
+    struct State {
+        BodtSmoother smoother;
+        MoveGuard guard;
+        std::vector<FaceKey> faces;
+        StepReport report;
+    };
+    const bool interior_only = mode_ == BODT_MODE_ODT;
+    const int threads = sweep_threads(params_.threads, mesh.tets.size());
+    ShapeCache shapes = tet_shapes(mesh, threads);
+    const auto states = coloured_sweep(
+        colour_vertices(mesh), threads,
+        State{BodtSmoother(surfaces, cls), MoveGuard(guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
+            if (interior_only && cls.cls[v] != VertexClass::Interior) return;
+            smooth_vertex([&](Vec3& target) { return s.smoother.target(mesh, v, target, s.faces); },
+                          [&](const Vec3& target, double& distance) {
+                              return s.guard.move(mesh, v, target, s.faces, distance);
+                          },
+                          s.report);
+        });
+    merge_counts(states, report);
+}
+
+// Natural ODT (smoothing/nodt.hpp): boundary vertices projected back onto
+// the surface captured when NODT first ran on it.
+void Improver::sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) {
+    const VertexClasses& cls = classes(mesh, surfaces);
+    nodt_input_.update(mesh, cls);
+    struct State {
+        NodtSmoother smoother;
+        std::vector<FaceKey> faces;
+        StepReport report;
+    };
+    const int threads = sweep_threads(params_.threads, mesh.tets.size());
+    ShapeCache shapes = tet_shapes(mesh, threads);
+    const auto states = coloured_sweep(
+        colour_vertices(mesh), threads,
+        State{NodtSmoother(surfaces, cls, nodt_input_, guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
+            smooth_vertex([&](Vec3& target) { return s.smoother.target(mesh, v, target, s.faces); },
+                          [&](const Vec3& target, double& distance) {
+                              return s.smoother.move(mesh, v, target, s.faces, distance);
+                          },
+                          s.report);
+        });
+    merge_counts(states, report);
 }
 
 QuasiNewtonSettings Improver::quasi_newton_settings() const {
@@ -112,17 +181,27 @@ QuasiNewtonSettings Improver::quasi_newton_settings() const {
 // objective (eq. 3.4), through the guard.
 void Improver::sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const {
     const VertexClasses& cls = classes(mesh, surfaces);
-    OptWeightedSmoother smoother(cls.cls, ElementWeights::from_c(params_.weight_c), quasi_newton_settings());
-    MoveGuard guard({params_.min_stretch, params_.backtrack_steps, params_.never_worse != 0});
+    struct State {
+        OptWeightedSmoother smoother;
+        MoveGuard guard;
+        StepReport report;
+    };
     const std::vector<uint8_t> work = poor_vertices(mesh, params_.poor_quality);
     const std::vector<FaceKey> no_faces;
-    for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
-        Vec3 target;
-        if (!work[v] || !smoother.target(mesh, v, target)) continue;
-        double distance = 0.0;
-        const MoveOutcome outcome = guard.move(mesh, v, target, no_faces, distance);
-        count_outcome(outcome, distance, report);
-    }
+    const int threads = sweep_threads(params_.threads, mesh.tets.size());
+    ShapeCache shapes = tet_shapes(mesh, threads);
+    const auto states = coloured_sweep(
+        colour_vertices(mesh), threads,
+        State{OptWeightedSmoother(cls.cls, ElementWeights::from_c(params_.weight_c), quasi_newton_settings()),
+              MoveGuard(guard_settings(), &shapes), {}},
+        [&](State& s, int32_t v) {
+            Vec3 target;
+            if (!work[v] || !s.smoother.target(mesh, v, target)) return;
+            double distance = 0.0;
+            const MoveOutcome outcome = s.guard.move(mesh, v, target, no_faces, distance);
+            count_outcome(outcome, distance, s.report);
+        });
+    merge_counts(states, report);
 }
 
 int32_t Improver::ops() const {
@@ -182,7 +261,7 @@ void Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     const TopologyCounts counts = improve_topology(editable, settings);
     if (!counts.changed()) return;
     editable.write_to(mesh);
-    mesh.build_topology(0);
+    mesh.build_topology(0, sweep_threads(params_.threads, mesh.tets.size()));
     RegionSurfaces rebuilt;
     rebuilt.build(mesh, 0, BoundarySurface::Strictness::Tolerant);
     surfaces = std::move(rebuilt);
@@ -212,6 +291,7 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
         } else if (ops() & BODT_OP_SMOOTH) {
             if (mode_ == BODT_MODE_LAPLACE) sweep_laplace(mesh, report);
             else if (mode_ == BODT_MODE_OPT_WEIGHTED) sweep_opt_weighted(mesh, surfaces, report);
+            else if (mode_ == BODT_MODE_NODT) sweep_nodt(mesh, surfaces, report);
             else sweep_bodt(mesh, surfaces, report);
         }
         if (mode_ != BODT_MODE_PHASED_ODT) change_topology(mesh, surfaces, report);
@@ -229,7 +309,7 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
         }
         throw;
     }
-    const QualitySummary q = summarize_quality(mesh);
+    const QualityExtremes q = quality_extremes(mesh, sweep_threads(params_.threads, mesh.tets.size()));
     report.step = ++steps_done_;
     report.min_dihedral = q.min_dihedral;
     report.max_dihedral = q.max_dihedral;

@@ -1,9 +1,9 @@
 // The improvement pipeline of a mesh handle: the current mode, its
 // parameters, the vertex classes the mode works with, and `step`: one
-// Gauss-Seidel sweep over the vertices, then flips and vertex insertion
-// where tets are still bad (paper 000 Fig. 1), or, in
-// BODT_MODE_OPT_WEIGHTED, one round of paper 001's combined algorithm
-// (sec. 2): quasi-Newton on the vertices of poor tets, then swaps of the
+// Gauss-Seidel sweep over the vertices, colour by colour (coloured_sweep.hpp),
+// then flips and vertex insertion where tets are still bad (paper 000
+// Fig. 1), or, in BODT_MODE_OPT_WEIGHTED, one round of paper 001's combined
+// algorithm (sec. 2): quasi-Newton on the vertices of poor tets, then swaps of the
 // poor tets whose vertices all stay put; in BODT_MODE_PHASED_ODT, one round
 // of paper 002 (Fig. 3): removal of inverted and degenerate tets, recovery
 // of density and geometry, ODT by phases, flips.
@@ -16,6 +16,8 @@
 #include "mesh/tet_mesh.hpp"
 #include "pipeline/density_field.hpp"
 #include "pipeline/params.hpp"
+#include "smoothing/input_surface.hpp"
+#include "smoothing/move_guard.hpp"
 #include "smoothing/quasi_newton.hpp"
 
 #include <cstdint>
@@ -71,9 +73,13 @@ public:
     StepReport step(TetMesh& mesh, RegionSurfaces& surfaces);
 
 private:
+    GuardSettings guard_settings() const;
+    // Smoothing sweeps: Gauss-Seidel colour by colour (coloured_sweep.hpp),
+    // on BODT_PARAM_THREADS threads.
     void sweep_laplace(TetMesh& mesh, StepReport& report) const;
     void sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const;
     void sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const;
+    void sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report);
     QuasiNewtonSettings quasi_newton_settings() const;
     void change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
     void step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
@@ -87,6 +93,7 @@ private:
     mutable bool classes_valid_ = false;
     mutable GeometryModel geometry_;  // carried state in the phased mode, a cache otherwise
     mutable bool geometry_valid_ = false;
+    InputSurface nodt_input_;  // BODT_MODE_NODT projects onto it: the surface as captured
     DensityGrid density_;                  // the target density; empty: none
     std::vector<double> vertex_acceptable_;  // per input vertex: its reference region's acceptable error
     std::vector<Vec3> reference_points_;     // per input vertex: where the reference has it

@@ -43,6 +43,7 @@ constexpr Info kParams[] = {
     {BODT_PARAM_DENSITY_SPLIT, "BODT_PARAM_DENSITY_SPLIT", Type::Double, 0.0, 1.0, true, true},
     {BODT_PARAM_DENSITY_COLLAPSE, "BODT_PARAM_DENSITY_COLLAPSE", Type::Double, 1.0, 100.0, true, false},
     {BODT_PARAM_FIT_TOLERANCE, "BODT_PARAM_FIT_TOLERANCE", Type::Double, 0.0, 0.1, true, false},
+    {BODT_PARAM_THREADS, "BODT_PARAM_THREADS", Type::Int, 0, 1024},
 };
 
 const Info& lookup(int key, Type want) {
@@ -81,6 +82,7 @@ int32_t& int_field(Params& p, int key) {
         case BODT_PARAM_KEEP_SURFACE: return p.keep_surface;
         case BODT_PARAM_DELAUNAY_FLIPS: return p.delaunay_flips;
         case BODT_PARAM_QN_MAX_ITERATIONS: return p.qn_max_iterations;
+        case BODT_PARAM_THREADS: return p.threads;
         default: return p.never_worse;
     }
 }

@@ -39,6 +39,39 @@ QualitySummary summarize_quality(const TetMesh& mesh) {
     return q;
 }
 
+QualityExtremes quality_extremes(const TetMesh& mesh, int threads) {
+    // The cosines of dihedral_angles(), compared before the arc cosine,
+    // which is decreasing: acos(largest cosine) is the smallest angle.
+    double cos_of_min = -1.0, cos_of_max = 1.0, min_stretch = 1.0;
+    const int32_t nt = mesh.num_tets();
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : cos_of_min) \
+    reduction(min : cos_of_max, min_stretch)
+    for (int32_t t = 0; t < nt; ++t) {
+        const auto p = mesh.tet_points(t);
+        min_stretch = std::min(min_stretch, stretch(p));
+        if (orient(p[0], p[1], p[2], p[3]).sign <= 0) {  // counts as 0 and 180 degrees
+            cos_of_min = 1.0;
+            cos_of_max = -1.0;
+            continue;
+        }
+        std::array<Vec3, 4> n;
+        for (int i = 0; i < 4; ++i) {
+            const auto& f = kFaceVertex[i];
+            n[i] = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]);
+        }
+        for (int e = 0; e < 6; ++e) {
+            const Vec3& na = n[kEdgeFaces[e][0]];
+            const Vec3& nb = n[kEdgeFaces[e][1]];
+            const double den = std::sqrt(na.squaredNorm() * nb.squaredNorm());
+            const double c = std::clamp(den > 0.0 ? -na.dot(nb) / den : 1.0, -1.0, 1.0);
+            cos_of_min = std::max(cos_of_min, c);
+            cos_of_max = std::min(cos_of_max, c);
+        }
+    }
+    constexpr double kDegrees = 180.0 / M_PI;
+    return {std::acos(cos_of_min) * kDegrees, std::acos(cos_of_max) * kDegrees, min_stretch};
+}
+
 void tet_measures(const TetMesh& mesh, TetMeasure measure, std::vector<double>& out) {
     out.resize(mesh.tets.size());
     for (int32_t t = 0; t < mesh.num_tets(); ++t) {

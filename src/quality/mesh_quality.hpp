@@ -26,6 +26,13 @@ struct QualitySummary {
 
 QualitySummary summarize_quality(const TetMesh& mesh);
 
+// The extremes of summarize_quality alone (the same values), without an
+// arc cosine per angle, on `threads` OpenMP threads: what a step reports.
+struct QualityExtremes {
+    double min_dihedral, max_dihedral, min_stretch;
+};
+QualityExtremes quality_extremes(const TetMesh& mesh, int threads);
+
 int dihedral_bin(double degrees);
 
 enum class TetMeasure { MinDihedral, MaxDihedral, Stretch, Volume };

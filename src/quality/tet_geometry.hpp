@@ -42,6 +42,12 @@ inline Orientation orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec
                              std::abs(u.z()) * (std::abs(m5) + std::abs(m6));
     constexpr double eps = 1.1102230246251565e-16;  // 2^-53
     constexpr double bound = (7.0 + 56.0 * eps) * eps;
+    // The bound assumes no underflow, and the quality measures multiply up
+    // to eight differences: a tet whose products are this small (less than
+    // about 1e-30 across, or a sliver of denormal volume) counts as flat,
+    // as does a non-finite determinant.
+    constexpr double tiny = 1e-90;
+    if (!(permanent >= tiny) || !std::isfinite(permanent)) return {det, 0};
     const int sign = det > bound * permanent ? 1 : (det < -bound * permanent ? -1 : 0);
     return {det, sign};
 }

@@ -6,6 +6,7 @@
 
 #include "mesh/tet_mesh.hpp"
 
+#include <array>
 #include <vector>
 
 namespace bodt {
@@ -18,9 +19,17 @@ struct GuardSettings {
 
 enum class MoveOutcome { Moved, Shortened, Rejected };
 
+// tet_shape() of every tet, for a sweep's guards to share (tet_shapes()).
+using ShapeCache = std::vector<TetShape>;
+ShapeCache tet_shapes(const TetMesh& mesh, int threads);
+
 class MoveGuard {
 public:
-    explicit MoveGuard(const GuardSettings& s) : settings_(s) {}
+    // With a cache (of the mesh as it is, kept up to date by the moves), a
+    // move reads the shapes of the tets around the vertex there instead of
+    // computing them; the guards of one sweep may share it when their
+    // vertices share no tet.
+    explicit MoveGuard(const GuardSettings& s, ShapeCache* cache = nullptr) : settings_(s), cache_(cache) {}
 
     // Moves vertex v of `mesh` towards `target`; `distance` receives the
     // length of the move made (0 when rejected).  `surface_faces` are the
@@ -30,11 +39,16 @@ public:
 
 private:
     bool acceptable(const TetMesh& mesh, int32_t v, const CosineRange& star_before,
-                    const std::vector<FaceKey>& surface_faces) const;
+                    const std::vector<FaceKey>& surface_faces);
+    // Star tet t (the k-th around the vertex) passes the guard; its shape
+    // goes to after_[k].
+    bool tet_acceptable(const TetMesh& mesh, int32_t t, size_t k, const CosineRange& star_before);
 
     GuardSettings settings_;
-    std::vector<double> before_;   // stretch of each star tet before the move (reused)
+    ShapeCache* cache_;
+    std::vector<TetShape> before_, after_;  // of each star tet (reused)
     std::vector<Vec3> normals_;    // normal of each watched face before the move (reused)
+    std::array<size_t, 2> extreme_{};  // star tets with the smallest and the largest angle before
 };
 
 }  // namespace bodt

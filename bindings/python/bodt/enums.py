@@ -73,6 +73,7 @@ class Mode(IntEnum):
     BODT = 4
     OPT_WEIGHTED = 5
     PHASED_ODT = 6
+    NODT = 7
 
 
 class Param(IntEnum):
@@ -99,6 +100,7 @@ class Param(IntEnum):
     DENSITY_SPLIT = 19
     DENSITY_COLLAPSE = 20
     FIT_TOLERANCE = 21
+    THREADS = 22
 
 
 class Op(IntFlag):

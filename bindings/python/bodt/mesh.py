@@ -36,6 +36,7 @@ INT_PARAMS = frozenset(
         Param.KEEP_SURFACE,
         Param.DELAUNAY_FLIPS,
         Param.QN_MAX_ITERATIONS,
+        Param.THREADS,
     }
 )
 

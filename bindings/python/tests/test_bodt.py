@@ -385,8 +385,8 @@ class TestParams(ErrorAssertions):
         self.mesh.mode = bodt.Mode.ODT
         self.assertIs(self.mesh.mode, bodt.Mode.ODT)
         with self.assertError(bodt.InvalidArgumentError, bodt.Status.INVALID_ARGUMENT) as context:
-            self.mesh.mode = 7
-        self.assertEqual(context.exception.message, "unknown mode 7")
+            self.mesh.mode = 8
+        self.assertEqual(context.exception.message, "unknown mode 8")
         self.assertIs(self.mesh.mode, bodt.Mode.ODT)
 
 
@@ -425,6 +425,26 @@ class TestImprove(ErrorAssertions):
         origins = self.mesh.tet_origins
         self.assertEqual(len(origins), len(tets))
         self.assertTrue(np.all((origins >= 0) & (origins < len(self.tets))))
+
+    def test_nodt_slides_the_boundary_over_the_input_surface(self):
+        # Natural ODT: boundary vertices move too, and back onto the cube's faces
+        # (here flat, so the volume stays); corners stay where they are
+        before = self.mesh.quality()
+        reports = self.mesh.improve(max_steps=10, mode=bodt.Mode.NODT, tolerance=0.0)
+        self.assertEqual(len(reports), 10)
+        self.assertIs(self.mesh.mode, bodt.Mode.NODT)
+        after = self.mesh.quality()
+        self.assertEqual(after.num_inverted, 0)
+        self.assertGreater(after.min_dihedral, before.min_dihedral + 5.0)
+        self.assertLessEqual(abs(after.volume - 1.0), 1e-12)
+        points = self.mesh.points
+        on_face = (self.points == 0.0) | (self.points == 1.0)  # per coordinate
+        np.testing.assert_allclose(points[on_face], self.points[on_face], rtol=0, atol=1e-12)
+        corners = meshes.grid_boundary_axes(4) == 3
+        np.testing.assert_array_equal(points[corners], self.points[corners])
+        moved = np.abs(points - self.points).max(axis=1)
+        boundary = on_face.any(axis=1) & ~corners
+        self.assertGreater(np.count_nonzero(moved[boundary] > 1e-3), boundary.sum() // 2)
 
     def test_mode_and_params_stay_set(self):
         reports = self.mesh.improve(max_steps=3, mode=bodt.Mode.ODT, tolerance=1e-9, backtrack_steps=2)

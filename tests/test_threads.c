@@ -1,0 +1,127 @@
+/*
+ * test_threads: BODT_PARAM_THREADS.  Its range and default, and that every
+ * mode gives the same mesh, bit for bit, and the same step reports on 1, 2
+ * and 5 threads and OpenMP's default: the sweeps move the vertices colour by colour, and within a
+ * colour no two vertices share a tet, so the order the threads take them in
+ * cannot matter.  A race (two threads moving neighbours at once) shows up as
+ * a difference here, most surely in the ASan build's slower, more
+ * interleaved runs.
+ */
+#include "api_checks.h"
+#include "bodt.h"
+#include "cleanup.h"
+#include "mesh_gen.h"
+#include "test_util.h"
+
+#include <stdlib.h>
+
+#define STEPS 3
+
+static test_mesh *jittered_box(void) {
+    test_mesh *m = calloc(1, sizeof *m);
+    assert_non_null(m);
+    cleanup_add(m, cleanup_free_test_mesh);
+    assert_int_equal(tm_make_box(m, 12, 0.25, 77), 0);
+    return m;
+}
+
+static bodt_mesh *create_ok(const test_mesh *m) {
+    bodt_mesh *h = NULL;
+    if (bodt_mesh_create(m->nverts, m->xyz, m->ntets, m->tets, 0, &h) != BODT_OK)
+        fail_msg("create: %s", bodt_mesh_last_error(NULL));
+    cleanup_add(h, (void (*)(void *))bodt_mesh_destroy);
+    return h;
+}
+
+static void test_param(void **state) {
+    (void)state;
+    bodt_mesh *h = create_ok(jittered_box());
+    int32_t threads = -7;
+    assert_int_equal(bodt_get_param_int(h, BODT_PARAM_THREADS, &threads), BODT_OK);
+    assert_int_equal(threads, 1); /* opt-in: 0 is OpenMP's default */
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_THREADS, 3), BODT_OK);
+    assert_int_equal(bodt_get_param_int(h, BODT_PARAM_THREADS, &threads), BODT_OK);
+    assert_int_equal(threads, 3);
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_THREADS, -1), BODT_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(bodt_mesh_last_error(h), "BODT_PARAM_THREADS"));
+    assert_int_equal(bodt_set_param_double(h, BODT_PARAM_THREADS, 2.0), BODT_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bodt_get_param_int(h, BODT_PARAM_THREADS, &threads), BODT_OK);
+    assert_int_equal(threads, 3); /* refused settings change nothing */
+}
+
+typedef struct run_result {
+    int32_t nverts, ntets;
+    double *xyz;
+    int32_t *tets;
+    bodt_step_report reports[STEPS];
+} run_result;
+
+/* STEPS steps of `mode` with `ops` (-1: the mode's default) on `threads`. */
+static run_result run(const test_mesh *m, int mode, int32_t ops, int32_t threads) {
+    bodt_mesh *h = create_ok(m);
+    assert_int_equal(bodt_set_mode(h, mode), BODT_OK);
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_OPS, ops), BODT_OK);
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_THREADS, threads), BODT_OK);
+    run_result r;
+    memset(&r, 0, sizeof r);
+    for (int k = 0; k < STEPS; ++k) {
+        r.reports[k].size = sizeof r.reports[k];
+        if (bodt_step(h, &r.reports[k]) != BODT_OK) fail_msg("mode %d step %d: %s", mode, k, bodt_mesh_last_error(h));
+    }
+    assert_int_equal(bodt_mesh_get_counts(h, &r.nverts, &r.ntets, NULL), BODT_OK);
+    r.xyz = cleanup_calloc(3 * (size_t)r.nverts * sizeof *r.xyz);
+    r.tets = cleanup_calloc(4 * (size_t)r.ntets * sizeof *r.tets);
+    assert_int_equal(bodt_mesh_get_vertices(h, r.xyz, 3 * (size_t)r.nverts), BODT_OK);
+    assert_int_equal(bodt_mesh_get_tets(h, r.tets, 4 * (size_t)r.ntets), BODT_OK);
+    return r;
+}
+
+static void assert_same_reports(const bodt_step_report *a, const bodt_step_report *b, int mode, int32_t threads) {
+    for (int k = 0; k < STEPS; ++k) {
+        if (a[k].vertices_moved != b[k].vertices_moved || a[k].moves_rejected != b[k].moves_rejected ||
+            a[k].moves_shortened != b[k].moves_shortened || a[k].not_positive_definite != b[k].not_positive_definite ||
+            a[k].flips != b[k].flips || a[k].vertices_inserted != b[k].vertices_inserted ||
+            a[k].edges_collapsed != b[k].edges_collapsed || a[k].max_move != b[k].max_move ||
+            a[k].min_dihedral != b[k].min_dihedral || a[k].max_dihedral != b[k].max_dihedral ||
+            a[k].min_stretch != b[k].min_stretch)
+            fail_msg("mode %d, %d threads: step %d reports differ from 1 thread's (moved %d vs %d, min %.17g vs %.17g)",
+                     mode, threads, k + 1, b[k].vertices_moved, a[k].vertices_moved, b[k].min_dihedral,
+                     a[k].min_dihedral);
+    }
+}
+
+static void test_same_result_on_any_number_of_threads(void **state) {
+    (void)state;
+    const test_mesh *m = jittered_box();
+    const struct {
+        int mode;
+        int32_t ops;
+    } runs[] = {{BODT_MODE_LAPLACE, -1},      {BODT_MODE_ODT, -1},
+                {BODT_MODE_BODT_BASIC, -1},   {BODT_MODE_BODT, BODT_OP_SMOOTH},
+                {BODT_MODE_BODT, -1},         {BODT_MODE_OPT_WEIGHTED, -1},
+                {BODT_MODE_PHASED_ODT, -1},   {BODT_MODE_NODT, -1}};
+    const int32_t thread_counts[] = {0, 2, 5}; /* 0: OpenMP's default */
+    for (size_t i = 0; i < sizeof runs / sizeof runs[0]; ++i) {
+        const run_result one = run(m, runs[i].mode, runs[i].ops, 1);
+        int32_t moved = 0;
+        for (int k = 0; k < STEPS; ++k) moved += one.reports[k].vertices_moved;
+        if (moved == 0) fail_msg("mode %d moved nothing: the comparison would prove nothing", runs[i].mode);
+        for (size_t j = 0; j < sizeof thread_counts / sizeof thread_counts[0]; ++j) {
+            const run_result many = run(m, runs[i].mode, runs[i].ops, thread_counts[j]);
+            assert_same_reports(one.reports, many.reports, runs[i].mode, thread_counts[j]);
+            assert_int_equal(many.nverts, one.nverts);
+            assert_int_equal(many.ntets, one.ntets);
+            if (memcmp(many.xyz, one.xyz, 3 * (size_t)one.nverts * sizeof *one.xyz) != 0)
+                fail_msg("mode %d: vertices on %d threads differ from 1 thread's", runs[i].mode, thread_counts[j]);
+            assert_memory_equal(many.tets, one.tets, 4 * (size_t)one.ntets * sizeof *one.tets);
+        }
+    }
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_teardown(test_param, cleanup_teardown),
+        cmocka_unit_test_teardown(test_same_result_on_any_number_of_threads, cleanup_teardown),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
