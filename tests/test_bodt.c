@@ -47,8 +47,6 @@
 
 /* ------------------------------------------------------------- helpers */
 
-static void destroy_mesh(void *p) { bodt_mesh_destroy(p); }
-
 typedef struct shape {
     test_mesh *m;
     unsigned char *axes; /* free axes per vertex (bit a: free along axis a) */
@@ -68,17 +66,9 @@ static shape make_sliding(int n, double size, tm_cube_filter keep, tm_cube_regio
     return s;
 }
 
-static bodt_mesh *create(const test_mesh *m, int mode) {
-    bodt_mesh *h = NULL;
-    if (bodt_mesh_create(m->nverts, m->xyz, m->ntets, m->tets, 0, &h) != BODT_OK)
-        fail_msg("create: %s", bodt_mesh_last_error(NULL));
-    cleanup_add(h, destroy_mesh);
-    assert_int_equal(bodt_set_mode(h, mode), BODT_OK);
-    /* These tests are about smoothing: the connectivity stays (test_ops.c
-     * and test_robustness below cover the flips and insertion). */
-    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_OPS, BODT_OP_SMOOTH), BODT_OK);
-    return h;
-}
+/* These tests are about smoothing (create_smoothing): the connectivity
+ * stays (test_ops.c and test_robustness below cover the flips and
+ * insertion). */
 
 static double *get_xyz(const bodt_mesh *h, int32_t nv) {
     double *xyz = cleanup_calloc(3 * (size_t)nv * sizeof *xyz);
@@ -193,7 +183,7 @@ static void check_volume_kept(const shape *s, const char *name) {
     static const int modes[2] = {BODT_MODE_BODT_BASIC, BODT_MODE_BODT};
     for (int nw = 0; nw <= 1; ++nw)
         for (int mi = 0; mi < 2; ++mi) {
-            bodt_mesh *h = create(m, modes[mi]);
+            bodt_mesh *h = create_smoothing(m, modes[mi]);
             assert_int_equal(bodt_set_param_int(h, BODT_PARAM_NEVER_WORSE, nw), BODT_OK);
             assert_int_equal(bodt_set_param_double(h, BODT_PARAM_TOLERANCE, 0.0), BODT_OK);
             const double v0 = total_volume(h, m->ntets);
@@ -252,7 +242,7 @@ static void test_odt_moves_interior_only(void **state) {
     (void)state;
     const shape s = make_sliding(5, 1.0, NULL, NULL, 0.3, 0.3, 21);
     const test_mesh *m = s.m;
-    bodt_mesh *h = create(m, BODT_MODE_ODT);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_ODT);
     const int32_t interior = tm_count_interior(m);
     assert_int_equal(interior, 64);
     for (int k = 0; k < 5; ++k) {
@@ -291,7 +281,7 @@ static void test_features_box(void **state) {
      * eq. 11) instead of feature edges */
     for (int variant = 0; variant < 3; ++variant) {
         const int nw = variant == 1;
-        bodt_mesh *h = create(m, BODT_MODE_BODT);
+        bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
         assert_int_equal(bodt_set_param_int(h, BODT_PARAM_NEVER_WORSE, nw), BODT_OK);
         if (variant == 2) assert_int_equal(bodt_set_param_double(h, BODT_PARAM_FEATURE_ANGLE, 180.0), BODT_OK);
         for (int k = 0; k < 10; ++k) {
@@ -317,7 +307,7 @@ static void test_features_box(void **state) {
 
     /* BODT_BASIC moves every boundary vertex in its tangent plane, also
      * corners and edge vertices: some leave their lines. */
-    bodt_mesh *h = create(m, BODT_MODE_BODT_BASIC);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT_BASIC);
     assert_int_equal(bodt_set_param_int(h, BODT_PARAM_NEVER_WORSE, 0), BODT_OK);
     for (int k = 0; k < 10; ++k) {
         bodt_step_report r;
@@ -357,7 +347,7 @@ static void test_user_feature_line(void **state) {
         edges[2 * t + 1] = diag[t + 1];
     }
     for (int marked = 0; marked <= 1; ++marked) {
-        bodt_mesh *h = create(m, BODT_MODE_BODT);
+        bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
         if (marked) assert_int_equal(bodt_mesh_set_feature_edges(h, N, edges), BODT_OK);
         const int32_t *cls = get_classes(h, m->nverts);
         for (int t = 1; t < N; ++t)
@@ -392,7 +382,7 @@ static void test_feature_edges_refused(void **state) {
     (void)state;
     test_mesh *m = cleanup_add(calloc(1, sizeof *m), cleanup_free_test_mesh);
     assert_int_equal(tm_make_box(m, 3, 0.0, 1), 0);
-    bodt_mesh *h = create(m, BODT_MODE_BODT);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
     const int32_t good[2] = {grid_vertex(3, 0, 0, 0), grid_vertex(3, 1, 1, 0)}; /* a face diagonal */
     assert_int_equal(bodt_mesh_set_feature_edges(h, 1, good), BODT_OK);
     const int32_t refused[][2] = {
@@ -416,7 +406,7 @@ static void test_feature_edges_refused(void **state) {
      * diagonal of a single cube. */
     test_mesh *c = cleanup_add(calloc(1, sizeof *c), cleanup_free_test_mesh);
     assert_int_equal(tm_make_box(c, 1, 0.0, 1), 0);
-    bodt_mesh *hc = create(c, BODT_MODE_BODT);
+    bodt_mesh *hc = create_smoothing(c, BODT_MODE_BODT);
     const int32_t diagonal[2] = {0, 7};
     assert_int_equal(bodt_mesh_set_feature_edges(hc, 1, diagonal), BODT_ERR_INVALID_ARGUMENT);
     const int32_t side[2] = {0, 3}; /* the diagonal of the face z = 0 */
@@ -437,7 +427,7 @@ static void test_fixed_vertices_all_modes(void **state) {
     static const int modes[5] = {BODT_MODE_LAPLACE, BODT_MODE_ODT, BODT_MODE_BODT_BASIC, BODT_MODE_BODT,
                                  BODT_MODE_NODT};
     for (int mi = 0; mi < 5; ++mi) {
-        bodt_mesh *h = create(m, modes[mi]);
+        bodt_mesh *h = create_smoothing(m, modes[mi]);
         assert_int_equal(bodt_mesh_set_fixed_vertices(h, nfixed, fixed), BODT_OK);
         assert_int_equal(bodt_set_param_int(h, BODT_PARAM_NEVER_WORSE, 0), BODT_OK);
         const int32_t *cls = get_classes(h, m->nverts);
@@ -477,7 +467,7 @@ static void test_classes_box(void **state) {
     enum { N = 5 };
     const shape s = make_sliding(N, 1.0, NULL, NULL, 0.25, 0.25, 61);
     const test_mesh *m = s.m;
-    bodt_mesh *h = create(m, BODT_MODE_BODT);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
     const int32_t *cls = get_classes(h, m->nverts);
     expect_classes_by_axes(&s, cls, "box");
     int count[6] = {0};
@@ -546,7 +536,7 @@ static void test_classes_cylinder(void **state) {
     (void)state;
     enum { N = 6 };
     const test_mesh *m = make_cylinder();
-    bodt_mesh *h = create(m, BODT_MODE_BODT);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
     const int32_t *cls = get_classes(h, m->nverts);
     int rim = 0, side = 0, cap = 0;
     for (int32_t v = 0; v < m->nverts; ++v) {
@@ -581,7 +571,7 @@ static void test_classes_cylinder(void **state) {
 static void test_cylinder_caps_stay_flat(void **state) {
     (void)state;
     const test_mesh *m = make_cylinder();
-    bodt_mesh *h = create(m, BODT_MODE_BODT);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
     const int32_t *cls = get_classes(h, m->nverts);
     for (int k = 0; k < 5; ++k) {
         bodt_step_report r;
@@ -614,7 +604,7 @@ static void test_classes_ball(void **state) {
     test_mesh *m = cleanup_add(calloc(1, sizeof *m), cleanup_free_test_mesh);
     assert_int_equal(tm_make_cubes(m, 6, 2.0, NULL, NULL, 0.0, 1), 0);
     assert_int_equal(tm_map_cube_to_ball(m), 0);
-    bodt_mesh *h = create(m, BODT_MODE_BODT);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
     const int32_t *cls = get_classes(h, m->nverts);
     int nb = 0;
     for (int32_t v = 0; v < m->nverts; ++v) {
@@ -636,7 +626,7 @@ static void test_two_regions(void **state) {
     enum { N = 6 };
     const shape s = make_sliding(N, 1.0, NULL, region_halves, 0.25, 0.25, 71);
     const test_mesh *m = s.m;
-    bodt_mesh *h = create(m, BODT_MODE_BODT);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
     assert_int_equal(bodt_mesh_set_regions(h, s.regions), BODT_OK);
     int32_t nbf = 0;
     assert_int_equal(bodt_mesh_get_counts(h, NULL, NULL, &nbf), BODT_OK);
@@ -656,7 +646,7 @@ static void test_two_regions(void **state) {
      * that keeps both regions' volumes.  (Nothing else is kept in this mode:
      * box edges and corners move, and with them the interface.) */
     {
-        bodt_mesh *basic = create(m, BODT_MODE_BODT_BASIC);
+        bodt_mesh *basic = create_smoothing(m, BODT_MODE_BODT_BASIC);
         assert_int_equal(bodt_mesh_set_regions(basic, s.regions), BODT_OK);
         assert_int_equal(bodt_set_param_int(basic, BODT_PARAM_NEVER_WORSE, 0), BODT_OK);
         const double b0 = region_volume(basic, m->ntets, 0), b1 = region_volume(basic, m->ntets, 1);
@@ -740,7 +730,7 @@ static void test_robustness(void **state) {
             free(regions);
         }
         cleanup_add(regions, free);
-        bodt_mesh *h = create(m, BODT_MODE_BODT);
+        bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
         assert_int_equal(bodt_set_param_int(h, BODT_PARAM_OPS, BODT_OPS_MODE_DEFAULT), BODT_OK);
         if (region) assert_int_equal(bodt_mesh_set_regions(h, regions), BODT_OK);
         bodt_quality q;
@@ -918,7 +908,7 @@ static int check_non_manifold_regions(const shape *s, const int32_t *regions, co
     for (int32_t v = 0; v < m->nverts; ++v) nbad += bad[v];
     assert_true(nbad > 0);
 
-    bodt_mesh *h = create(m, BODT_MODE_BODT);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
     assert_int_equal(bodt_mesh_set_regions(h, regions), BODT_OK);
     assert_int_equal(bodt_set_param_int(h, BODT_PARAM_NEVER_WORSE, 0), BODT_OK);
     const int32_t *cls = get_classes(h, m->nverts);

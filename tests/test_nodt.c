@@ -23,6 +23,7 @@
  *   two regions  interface vertices stay on the interface plane x = 1/2
  *                and move in it
  */
+#include "api_checks.h"
 #include "bodt.h"
 #include "cleanup.h"
 #include "mesh_gen.h"
@@ -33,17 +34,6 @@
 
 enum { kSteps = 10 };
 
-static void destroy_mesh(void *p) { bodt_mesh_destroy(p); }
-
-static bodt_mesh *create(const test_mesh *m, int mode) {
-    bodt_mesh *h = NULL;
-    if (bodt_mesh_create(m->nverts, m->xyz, m->ntets, m->tets, 0, &h) != BODT_OK)
-        fail_msg("create: %s", bodt_mesh_last_error(NULL));
-    cleanup_add(h, destroy_mesh);
-    assert_int_equal(bodt_set_mode(h, mode), BODT_OK);
-    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_OPS, BODT_OP_SMOOTH), BODT_OK);
-    return h;
-}
 
 static void run_steps(bodt_mesh *h) {
     for (int k = 0; k < kSteps; ++k) {
@@ -108,7 +98,7 @@ static void test_box(void **state) {
     unsigned char *axes = NULL;
     const test_mesh *m = sliding_box(N, 1.0, NULL, 0.3, 0.35, 11, &axes, NULL);
     const double tol = 1e-9 * diagonal(m), h = 1.0 / N;
-    bodt_mesh *nodt = create(m, BODT_MODE_NODT), *odt = create(m, BODT_MODE_ODT);
+    bodt_mesh *nodt = create_smoothing(m, BODT_MODE_NODT), *odt = create_smoothing(m, BODT_MODE_ODT);
     /* a face vertex fixed and another one made a corner by the caller */
     int32_t fixed = -1, corner = -1;
     for (int32_t v = 0; v < m->nverts && corner < 0; ++v)
@@ -212,7 +202,7 @@ static void test_ball(void **state) {
     test_mesh *m = sliding_box(8, 2.0, NULL, 0.15, 0.25, 5, &axes, NULL);
     assert_int_equal(tm_map_cube_to_ball(m), 0);
     const double tol = 1e-9 * diagonal(m);
-    bodt_mesh *h = create(m, BODT_MODE_NODT);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_NODT);
     int32_t nb = 0;
     assert_int_equal(bodt_mesh_get_counts(h, NULL, NULL, &nb), BODT_OK);
     int32_t *tris = cleanup_calloc(3 * (size_t)nb * sizeof *tris);
@@ -262,7 +252,7 @@ static void test_two_regions(void **state) {
     int32_t *regions = NULL;
     const test_mesh *m = sliding_box(6, 1.0, region_halves, 0.3, 0.35, 31, &axes, &regions);
     const double tol = 1e-9 * diagonal(m);
-    bodt_mesh *h = create(m, BODT_MODE_NODT);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_NODT);
     assert_int_equal(bodt_mesh_set_regions(h, regions), BODT_OK);
     run_steps(h);
     expect_valid(h, m->ntets, "two regions");

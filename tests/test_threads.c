@@ -25,17 +25,9 @@ static test_mesh *jittered_box(void) {
     return m;
 }
 
-static bodt_mesh *create_ok(const test_mesh *m) {
-    bodt_mesh *h = NULL;
-    if (bodt_mesh_create(m->nverts, m->xyz, m->ntets, m->tets, 0, &h) != BODT_OK)
-        fail_msg("create: %s", bodt_mesh_last_error(NULL));
-    cleanup_add(h, (void (*)(void *))bodt_mesh_destroy);
-    return h;
-}
-
 static void test_param(void **state) {
     (void)state;
-    bodt_mesh *h = create_ok(jittered_box());
+    bodt_mesh *h = create_cleaned(jittered_box());
     int32_t threads = -7;
     assert_int_equal(bodt_get_param_int(h, BODT_PARAM_THREADS, &threads), BODT_OK);
     assert_int_equal(threads, 1); /* opt-in: 0 is OpenMP's default */
@@ -58,7 +50,7 @@ typedef struct run_result {
 
 /* STEPS steps of `mode` with `ops` (-1: the mode's default) on `threads`. */
 static run_result run(const test_mesh *m, int mode, int32_t ops, int32_t threads) {
-    bodt_mesh *h = create_ok(m);
+    bodt_mesh *h = create_cleaned(m);
     assert_int_equal(bodt_set_mode(h, mode), BODT_OK);
     assert_int_equal(bodt_set_param_int(h, BODT_PARAM_OPS, ops), BODT_OK);
     assert_int_equal(bodt_set_param_int(h, BODT_PARAM_THREADS, threads), BODT_OK);

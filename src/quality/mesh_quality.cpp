@@ -40,8 +40,8 @@ QualitySummary summarize_quality(const TetMesh& mesh) {
 }
 
 QualityExtremes quality_extremes(const TetMesh& mesh, int threads) {
-    // The cosines of dihedral_angles(), compared before the arc cosine,
-    // which is decreasing: acos(largest cosine) is the smallest angle.
+    // dihedral_cosines(), compared before the arc cosine, which is
+    // decreasing: acos(largest cosine) is the smallest angle.
     double cos_of_min = -1.0, cos_of_max = 1.0, min_stretch = 1.0;
     const int32_t nt = mesh.num_tets();
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : cos_of_min) \
@@ -54,16 +54,7 @@ QualityExtremes quality_extremes(const TetMesh& mesh, int threads) {
             cos_of_max = -1.0;
             continue;
         }
-        std::array<Vec3, 4> n;
-        for (int i = 0; i < 4; ++i) {
-            const auto& f = kFaceVertex[i];
-            n[i] = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]);
-        }
-        for (int e = 0; e < 6; ++e) {
-            const Vec3& na = n[kEdgeFaces[e][0]];
-            const Vec3& nb = n[kEdgeFaces[e][1]];
-            const double den = std::sqrt(na.squaredNorm() * nb.squaredNorm());
-            const double c = std::clamp(den > 0.0 ? -na.dot(nb) / den : 1.0, -1.0, 1.0);
+        for (const double c : dihedral_cosines(p)) {
             cos_of_min = std::max(cos_of_min, c);
             cos_of_max = std::min(cos_of_max, c);
         }

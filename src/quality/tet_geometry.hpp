@@ -147,10 +147,11 @@ inline double min_dihedral_sine(const TetPoints& p) {
     return worst;
 }
 
-// The six interior dihedral angles in degrees, in kEdgeVertex order.  The
-// angle at an edge is pi minus the angle between the outward normals of the
-// two faces that meet there.  Meaningful for positively oriented tets only.
-inline std::array<double, 6> dihedral_angles(const TetPoints& p) {
+// The cosines of the six interior dihedral angles, in kEdgeVertex order,
+// in [-1, 1].  The angle at an edge is pi minus the angle between the
+// outward normals of the two faces that meet there.  Meaningful for
+// positively oriented tets only.
+inline std::array<double, 6> dihedral_cosines(const TetPoints& p) {
     std::array<Vec3, 4> n;
     for (int i = 0; i < 4; ++i) {
         const auto& f = kFaceVertex[i];
@@ -161,10 +162,15 @@ inline std::array<double, 6> dihedral_angles(const TetPoints& p) {
         const Vec3& na = n[kEdgeFaces[e][0]];
         const Vec3& nb = n[kEdgeFaces[e][1]];
         const double den = std::sqrt(na.squaredNorm() * nb.squaredNorm());
-        double c = den > 0.0 ? -na.dot(nb) / den : 1.0;
-        c = std::clamp(c, -1.0, 1.0);
-        out[e] = std::acos(c) * (180.0 / M_PI);
+        out[e] = std::clamp(den > 0.0 ? -na.dot(nb) / den : 1.0, -1.0, 1.0);
     }
+    return out;
+}
+
+// The six interior dihedral angles in degrees, in kEdgeVertex order.
+inline std::array<double, 6> dihedral_angles(const TetPoints& p) {
+    std::array<double, 6> out = dihedral_cosines(p);
+    for (double& a : out) a = std::acos(a) * (180.0 / M_PI);
     return out;
 }
 

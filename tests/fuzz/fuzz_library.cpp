@@ -38,6 +38,7 @@
 //    creation and after a successful step.
 // BODT_FUZZ_VERBOSE=1 prints each outcome (to check seeds, replay inputs).
 #include "bodt.h"
+#include "fuzz_check.hpp"
 
 #include <unistd.h>
 
@@ -55,15 +56,6 @@
 #include <vector>
 
 namespace {
-
-#define FUZZ_CHECK(cond)                                                                  \
-    do {                                                                                  \
-        if (!(cond)) {                                                                    \
-            std::fprintf(stderr, "fuzz_library: invariant violated: %s (%s:%d)\n", #cond, \
-                         __FILE__, __LINE__);                                             \
-            std::abort();                                                                 \
-        }                                                                                 \
-    } while (0)
 
 constexpr int32_t kMaxStepTets = 256;  // a step on bigger meshes (Medit path) is skipped
 constexpr int32_t kMaxCount = 16;      // entries per setter call

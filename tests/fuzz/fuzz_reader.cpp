@@ -21,6 +21,7 @@
 #include "io/vtu.hpp"
 
 #include "common/error.hpp"
+#include "fuzz_check.hpp"
 
 #include <unistd.h>
 
@@ -36,15 +37,6 @@
 #endif
 
 namespace {
-
-#define FUZZ_CHECK(cond)                                                                 \
-    do {                                                                                 \
-        if (!(cond)) {                                                                   \
-            std::fprintf(stderr, "fuzz_reader: invariant violated: %s (%s:%d)\n", #cond, \
-                         __FILE__, __LINE__);                                            \
-            std::abort();                                                                \
-        }                                                                                \
-    } while (0)
 
 // BODT_FUZZ_VERBOSE=1: print each outcome (to check seeds and replay inputs).
 bool verbose() {
