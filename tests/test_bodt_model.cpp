@@ -196,11 +196,15 @@ double star_volume(const Star& s, const Vec3& X) {
     return v;
 }
 
-// The library's model of the star: add_star_tet for every tet,
+// The library's model of the star: add_star over its tets,
 // add_ring_triangle for every ring triangle; returns the ring normal (B.1).
 bodt::StarModel model_of(const Star& s, Vec3& normal) {
     bodt::StarModel m;
-    for (size_t k = 0; k < s.tets.size(); ++k) bodt::add_star_tet(m, s.tets[k], s.local[k]);
+    bodt::StarTable table;
+    table.resize(s.tets.size());
+    for (size_t k = 0; k < s.tets.size(); ++k) table.set(k, s.tets[k], s.local[k]);
+    std::vector<double> terms;
+    bodt::add_star(m, table, s.x0, terms);
     normal = Vec3::Zero();
     const size_t n = s.ring.size();
     for (size_t i = 0; i < n; ++i) normal += bodt::add_ring_triangle(m, s.x0, s.ring[i], s.ring[(i + 1) % n]);

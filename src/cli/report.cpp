@@ -4,8 +4,9 @@
 //  - The dihedral histograms use 1-degree bins over [0, 180] (the last bin
 //    holds 180), like paper 000's figures, with a linear count axis shared by
 //    the two meshes.  The six angles of each tet are computed here from the
-//    vertex coordinates with the library's formula (pi minus the angle
-//    between the face normals at the edge), so the 1-degree counts add up to
+//    vertex coordinates by the library's header-only kernel (pi minus the
+//    angle between the face normals at the edge), in the library's corner
+//    order, so the 1-degree counts add up to
 //    bodt_quality.dihedral_histogram's 23 bins.  An inverted or flat tet
 //    (bodt_mesh_tet_quality gives it 0 and 180 degrees) counts, as in
 //    bodt_mesh_quality, two of its angles as 0 and 180 degrees (its first two
@@ -19,6 +20,8 @@
 //    tails stay visible at linear scale; each bar has a <title> tooltip with
 //    its exact count, and every histogram carries its counts in data-counts.
 #include "cli/report.hpp"
+
+#include "quality/tet_geometry.hpp"
 
 #include <algorithm>
 #include <array>
@@ -152,37 +155,6 @@ bool api(int status, const bodt_mesh* mesh, const char* what, std::string& error
     return false;
 }
 
-// The six dihedral angles of a tet in degrees, as the library computes them
-// (src/quality/tet_geometry.hpp): pi minus the angle between the normals of
-// the two faces at each edge.  Independent of the tet's orientation.
-std::array<double, 6> dihedral_angles(const double* p[4]) {
-    static const int face[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    static const int edge_faces[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
-    double n[4][3];
-    for (int i = 0; i < 4; ++i) {
-        const double* a = p[face[i][0]];
-        const double* b = p[face[i][1]];
-        const double* c = p[face[i][2]];
-        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-        const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        n[i][0] = u[1] * v[2] - u[2] * v[1];
-        n[i][1] = u[2] * v[0] - u[0] * v[2];
-        n[i][2] = u[0] * v[1] - u[1] * v[0];
-    }
-    std::array<double, 6> out{};
-    for (int e = 0; e < 6; ++e) {
-        const double* na = n[edge_faces[e][0]];
-        const double* nb = n[edge_faces[e][1]];
-        const double sa = na[0] * na[0] + na[1] * na[1] + na[2] * na[2];
-        const double sb = nb[0] * nb[0] + nb[1] * nb[1] + nb[2] * nb[2];
-        const double den = std::sqrt(sa * sb);
-        double c = den > 0.0 ? -(na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2]) / den : 1.0;
-        c = std::clamp(c, -1.0, 1.0);
-        out[static_cast<size_t>(e)] = std::acos(c) * (180.0 / kPi);
-    }
-    return out;
-}
-
 bool load(const bodt_mesh* mesh, const std::string& name, MeshData& d, std::string& error) {
     d.name = name;
     if (!mesh) {
@@ -219,8 +191,9 @@ bool load(const bodt_mesh* mesh, const std::string& name, MeshData& d, std::stri
 
     d.angle_counts.assign(kAngleBins, 0);
     d.stretch_counts.assign(kStretchBins, 0);
+    std::vector<bodt::TetPoints> tets(nt);
+    int64_t negative = 0, positive = 0;
     for (size_t t = 0; t < nt; ++t) {
-        const double* p[4];
         for (size_t k = 0; k < 4; ++k) {
             const int32_t v = d.tets[4 * t + k] - d.base;
             if (v < 0 || v >= d.nverts) {
@@ -228,9 +201,20 @@ bool load(const bodt_mesh* mesh, const std::string& name, MeshData& d, std::stri
                         " has a vertex index out of range";
                 return false;
             }
-            p[k] = &d.xyz[3 * static_cast<size_t>(v)];
+            const double* x = &d.xyz[3 * static_cast<size_t>(v)];
+            tets[t][k] = bodt::Vec3(x[0], x[1], x[2]);
         }
-        auto angles = dihedral_angles(p);
+        const int sign = bodt::orient(tets[t][0], tets[t][1], tets[t][2], tets[t][3]).sign;
+        negative += sign < 0;
+        positive += sign > 0;
+    }
+    // The library holds the tets in the majority's orientation made
+    // positive, corners 2 and 3 swapped (mesh_builder.cpp); the angles'
+    // last bits, and so their bins, follow the corner order.
+    const bool flipped = negative > positive;
+    for (size_t t = 0; t < nt; ++t) {
+        if (flipped) std::swap(tets[t][2], tets[t][3]);
+        auto angles = bodt::dihedral_angles(tets[t]);
         const bool inverted = d.min_d[t] <= 0.0 && d.max_d[t] >= 180.0;
         if (inverted) {  // as bodt_mesh_quality: one 0 and one 180 degree angle
             ++d.inverted;

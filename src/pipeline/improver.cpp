@@ -97,7 +97,7 @@ GuardSettings Improver::guard_settings() const {
     return {params_.min_stretch, params_.backtrack_steps, params_.never_worse != 0};
 }
 
-void Improver::sweep_laplace(TetMesh& mesh, StepReport& report) const {
+void Improver::sweep_laplace(TetMesh& mesh, ShapeCache& shapes, StepReport& report) const {
     struct State {
         MoveGuard guard;
         std::vector<int32_t> scratch;
@@ -105,7 +105,6 @@ void Improver::sweep_laplace(TetMesh& mesh, StepReport& report) const {
     };
     const std::vector<FaceKey> no_faces;
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
-    ShapeCache shapes = tet_shapes(mesh, threads);
     const auto states = coloured_sweep(
         colour_vertices(mesh), threads, State{MoveGuard(guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
             if (!mesh.is_interior_free(v)) return;
@@ -119,7 +118,8 @@ void Improver::sweep_laplace(TetMesh& mesh, StepReport& report) const {
 
 // ODT, B-ODT basic and B-ODT: the modes differ only in which vertices move
 // (ODT: inner ones) and how the surface vertices were classified.
-void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const {
+void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes,
+                          StepReport& report) const {
     const VertexClasses& cls = classes(mesh, surfaces);
     struct State {
         BodtSmoother smoother;
@@ -129,14 +129,15 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepRep
     };
     const bool interior_only = mode_ == BODT_MODE_ODT;
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
-    ShapeCache shapes = tet_shapes(mesh, threads);
     const auto states = coloured_sweep(
         colour_vertices(mesh), threads,
         State{BodtSmoother(surfaces, cls), MoveGuard(guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
             if (interior_only && cls.cls[v] != VertexClass::Interior) return;
-            smooth_vertex([&](Vec3& target) { return s.smoother.target(mesh, v, target, s.faces); },
+            StarTable& star = s.guard.star();
+            star.gather(mesh, v);
+            smooth_vertex([&](Vec3& target) { return s.smoother.target(mesh, v, star, target, s.faces); },
                           [&](const Vec3& target, double& distance) {
-                              return s.guard.move(mesh, v, target, s.faces, distance);
+                              return s.guard.move_gathered(mesh, v, target, s.faces, distance);
                           },
                           s.report);
         });
@@ -145,7 +146,8 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepRep
 
 // Natural ODT (smoothing/nodt.hpp): boundary vertices projected back onto
 // the surface captured when NODT first ran on it.
-void Improver::sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) {
+void Improver::sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes,
+                          StepReport& report) {
     const VertexClasses& cls = classes(mesh, surfaces);
     nodt_input_.update(mesh, cls);
     struct State {
@@ -154,7 +156,6 @@ void Improver::sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepRep
         StepReport report;
     };
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
-    ShapeCache shapes = tet_shapes(mesh, threads);
     const auto states = coloured_sweep(
         colour_vertices(mesh), threads,
         State{NodtSmoother(surfaces, cls, nodt_input_, guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
@@ -179,7 +180,8 @@ QuasiNewtonSettings Improver::quasi_newton_settings() const {
 // Paper 001 sec. 2, steps (2), (3) and (5): the work set is the vertices of
 // poor tets; each free one moves to the minimiser of its weighted star
 // objective (eq. 3.4), through the guard.
-void Improver::sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const {
+void Improver::sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes,
+                                  StepReport& report) const {
     const VertexClasses& cls = classes(mesh, surfaces);
     struct State {
         OptWeightedSmoother smoother;
@@ -189,7 +191,6 @@ void Improver::sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces,
     const std::vector<uint8_t> work = poor_vertices(mesh, params_.poor_quality);
     const std::vector<FaceKey> no_faces;
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
-    ShapeCache shapes = tet_shapes(mesh, threads);
     const auto states = coloured_sweep(
         colour_vertices(mesh), threads,
         State{OptWeightedSmoother(cls.cls, ElementWeights::from_c(params_.weight_c), quasi_newton_settings()),
@@ -234,11 +235,11 @@ RelocationTarget weighted_relocation(ElementWeights weights, const QuasiNewtonSe
 // Flips, insertion and collapse on an editable copy, written back only when
 // something changed.  A mesh holding accepted inverted tets is left to the
 // modes that repair those.
-void Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report) {
+bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report) {
     const int32_t bits = ops();
-    if (!(bits & (BODT_OP_FLIP | BODT_OP_INSERT | BODT_OP_COLLAPSE))) return;
+    if (!(bits & (BODT_OP_FLIP | BODT_OP_INSERT | BODT_OP_COLLAPSE))) return false;
     for (uint8_t r : mesh.reversed)
-        if (r) return;
+        if (r) return false;
     TopologySettings settings;
     settings.rules.surface_may_change =
         params_.keep_surface == 0 && (mode_ == BODT_MODE_BODT || mode_ == BODT_MODE_BODT_BASIC);
@@ -259,7 +260,7 @@ void Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     settings.relocate_old = bits & BODT_OP_SMOOTH;
     EditableMesh editable(mesh, classes(mesh, surfaces));
     const TopologyCounts counts = improve_topology(editable, settings);
-    if (!counts.changed()) return;
+    if (!counts.changed()) return false;
     editable.write_to(mesh);
     mesh.build_topology(0, sweep_threads(params_.threads, mesh.tets.size()));
     RegionSurfaces rebuilt;
@@ -269,6 +270,15 @@ void Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     report.flips = counts.flips;
     report.vertices_inserted = counts.inserted;
     report.edges_collapsed = counts.collapsed;
+    return true;
+}
+
+void Improver::sweep(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes, StepReport& report) {
+    shapes = tet_shapes(mesh, sweep_threads(params_.threads, mesh.tets.size()));
+    if (mode_ == BODT_MODE_LAPLACE) sweep_laplace(mesh, shapes, report);
+    else if (mode_ == BODT_MODE_OPT_WEIGHTED) sweep_opt_weighted(mesh, surfaces, shapes, report);
+    else if (mode_ == BODT_MODE_NODT) sweep_nodt(mesh, surfaces, shapes, report);
+    else sweep_bodt(mesh, surfaces, shapes, report);
 }
 
 StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
@@ -285,16 +295,14 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
         saved_geometry = geometry_;
     }
     StepReport report;
+    ShapeCache shapes;  // of every tet after a sweep, when nothing else changed the mesh
     try {
         if (mode_ == BODT_MODE_PHASED_ODT) {
             step_phased(mesh, surfaces, report);
-        } else if (ops() & BODT_OP_SMOOTH) {
-            if (mode_ == BODT_MODE_LAPLACE) sweep_laplace(mesh, report);
-            else if (mode_ == BODT_MODE_OPT_WEIGHTED) sweep_opt_weighted(mesh, surfaces, report);
-            else if (mode_ == BODT_MODE_NODT) sweep_nodt(mesh, surfaces, report);
-            else sweep_bodt(mesh, surfaces, report);
+        } else {
+            if (ops() & BODT_OP_SMOOTH) sweep(mesh, surfaces, shapes, report);
+            if (change_topology(mesh, surfaces, report)) shapes.clear();
         }
-        if (mode_ != BODT_MODE_PHASED_ODT) change_topology(mesh, surfaces, report);
         for (const Vec3& p : mesh.points)
             if (!p.allFinite()) throw Error(BODT_ERR_NUMERIC, "a vertex position became non-finite");
     } catch (...) {
@@ -309,7 +317,8 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
         }
         throw;
     }
-    const QualityExtremes q = quality_extremes(mesh, sweep_threads(params_.threads, mesh.tets.size()));
+    const int threads = sweep_threads(params_.threads, mesh.tets.size());
+    const QualityExtremes q = shapes.empty() ? quality_extremes(mesh, threads) : quality_extremes(shapes, threads);
     report.step = ++steps_done_;
     report.min_dihedral = q.min_dihedral;
     report.max_dihedral = q.max_dihedral;

@@ -75,13 +75,17 @@ public:
 private:
     GuardSettings guard_settings() const;
     // Smoothing sweeps: Gauss-Seidel colour by colour (coloured_sweep.hpp),
-    // on BODT_PARAM_THREADS threads.
-    void sweep_laplace(TetMesh& mesh, StepReport& report) const;
-    void sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const;
-    void sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report) const;
-    void sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, StepReport& report);
+    // on BODT_PARAM_THREADS threads; `shapes` (tet_shapes() of the mesh as
+    // it is) is kept up to date by the moves.
+    void sweep(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes, StepReport& report);
+    void sweep_laplace(TetMesh& mesh, ShapeCache& shapes, StepReport& report) const;
+    void sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes, StepReport& report) const;
+    void sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes,
+                            StepReport& report) const;
+    void sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes, StepReport& report);
     QuasiNewtonSettings quasi_newton_settings() const;
-    void change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
+    // Returns whether the connectivity changed.
+    bool change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
     void step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
     void sweep_phased(TetMesh& mesh, StepReport& report);
     void apply_reference_errors() const;

@@ -33,6 +33,13 @@ struct QualityExtremes {
 };
 QualityExtremes quality_extremes(const TetMesh& mesh, int threads);
 
+// tet_shape() of every tet: what the guards of a sweep share, kept up to
+// date by their moves.
+using ShapeCache = std::vector<TetShape>;
+ShapeCache tet_shapes(const TetMesh& mesh, int threads);
+// quality_extremes() of the mesh whose tet_shapes() these are.
+QualityExtremes quality_extremes(const ShapeCache& shapes, int threads);
+
 int dihedral_bin(double degrees);
 
 enum class TetMeasure { MinDihedral, MaxDihedral, Stretch, Volume };

@@ -9,10 +9,29 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace bodt {
 
 using Vec3 = Eigen::Vector3d;
+
+// The per-tet kernels are inlined into the loops over tets, whose
+// vectorisation depends on it.
+#if defined(__GNUC__)
+#define BODT_KERNEL inline __attribute__((always_inline))
+#else
+#define BODT_KERNEL inline
+#endif
+// A function holding such a loop is built twice on x86-64 Linux, for AVX2
+// and for the base instruction set, and the loader picks one.  Neither may
+// contract a multiply-add (-ffp-contract=off) or sum across vector lanes,
+// so both give the same bits.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+    !defined(__SANITIZE_ADDRESS__)
+#define BODT_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define BODT_VECTOR_CLONES
+#endif
 
 // Local vertex triples of the four faces, face i opposite vertex i, ordered so
 // that the right-hand normal points out of a positively oriented tet.
@@ -21,25 +40,36 @@ inline constexpr int kFaceVertex[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2
 inline constexpr int kEdgeVertex[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 inline constexpr int kEdgeFaces[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
 
-// Sign of the orientation determinant 6V = (b-a) . ((c-a) x (d-a)), certified
-// by Shewchuk's static error bound for orient3d ("Adaptive precision
-// floating-point arithmetic", 1997, errboundA = (7 + 56 eps) eps): +1 or -1
-// when the sign of the exact determinant is known, 0 when round-off could
-// flip it.  A tet with sign 0 is treated as flat.
+
+// A point as three plain doubles: what the per-tet kernels work on, so that
+// a loop over tets keeps them in registers and vectorises.
+struct Coords {
+    double x, y, z;
+};
+BODT_KERNEL Coords operator-(const Coords& a, const Coords& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+BODT_KERNEL Coords cross(const Coords& a, const Coords& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+BODT_KERNEL double dot(const Coords& a, const Coords& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Coords coords(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+
+// Sign of the orientation determinant 6V = (b-a) . ((c-a) x (d-a)),
+// certified by Shewchuk's static error bound for orient3d ("Adaptive
+// precision floating-point arithmetic", 1997, errboundA = (7 + 56 eps) eps):
+// +1 or -1 when the sign of the exact determinant is known, 0 when round-off
+// could flip it.  A tet with sign 0 is treated as flat.
 struct Orientation {
     double det6;  // six times the signed volume
     int sign;
 };
 
-inline Orientation orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-    const Vec3 u = b - a, v = c - a, w = d - a;
-    const double m1 = v.y() * w.z(), m2 = v.z() * w.y();
-    const double m3 = v.z() * w.x(), m4 = v.x() * w.z();
-    const double m5 = v.x() * w.y(), m6 = v.y() * w.x();
-    const double det = u.x() * (m1 - m2) + u.y() * (m3 - m4) + u.z() * (m5 - m6);
-    const double permanent = std::abs(u.x()) * (std::abs(m1) + std::abs(m2)) +
-                             std::abs(u.y()) * (std::abs(m3) + std::abs(m4)) +
-                             std::abs(u.z()) * (std::abs(m5) + std::abs(m6));
+BODT_KERNEL Orientation orient(const Coords& a, const Coords& b, const Coords& c, const Coords& d) {
+    const Coords u = b - a, v = c - a, w = d - a;
+    const double m1 = v.y * w.z, m2 = v.z * w.y, m3 = v.z * w.x, m4 = v.x * w.z, m5 = v.x * w.y, m6 = v.y * w.x;
+    const double det = u.x * (m1 - m2) + u.y * (m3 - m4) + u.z * (m5 - m6);
+    const double permanent = std::abs(u.x) * (std::abs(m1) + std::abs(m2)) +
+                             std::abs(u.y) * (std::abs(m3) + std::abs(m4)) +
+                             std::abs(u.z) * (std::abs(m5) + std::abs(m6));
     constexpr double eps = 1.1102230246251565e-16;  // 2^-53
     constexpr double bound = (7.0 + 56.0 * eps) * eps;
     // The bound assumes no underflow, and the quality measures multiply up
@@ -47,9 +77,13 @@ inline Orientation orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec
     // about 1e-30 across, or a sliver of denormal volume) counts as flat,
     // as does a non-finite determinant.
     constexpr double tiny = 1e-90;
-    if (!(permanent >= tiny) || !std::isfinite(permanent)) return {det, 0};
+    const bool usable = permanent >= tiny && permanent <= std::numeric_limits<double>::max();
     const int sign = det > bound * permanent ? 1 : (det < -bound * permanent ? -1 : 0);
-    return {det, sign};
+    return {det, usable ? sign : 0};
+}
+
+inline Orientation orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    return orient(coords(a), coords(b), coords(c), coords(d));
 }
 
 inline double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -59,44 +93,83 @@ inline double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const V
 using TetPoints = std::array<Vec3, 4>;
 
 // The cosines of a tet's smallest and largest dihedral angle, without acos:
-// the extremes the angle guard compares.  Meaningful for positively
-// oriented tets.
+// the extremes the angle guard compares.  A tet that is not positively
+// oriented (certified) counts as the worst possible: cosines 1 and -1, the
+// 0 and 180 degrees of the quality measures.
 struct CosineRange {
     double of_min;  // cos of the smallest angle (the largest cosine)
     double of_max;  // cos of the largest angle (the smallest cosine)
 };
 
-// What the move guard needs of a tet, from one set of face normals.
+// What the move guard needs of a tet.
 struct TetShape {
     double stretch;
     CosineRange cosines;
 };
 
-inline TetShape tet_shape(const TetPoints& p) {
-    std::array<Vec3, 4> n;
-    double area2 = 0.0;  // twice the total face area
+// Orientation, stretch and the six dihedral cosines of the tet with corners
+// (x[i], y[i], z[i]), from one set of face normals: the one definition
+// behind orient(), tet_shape() and dihedral_cosines(), so the guard, the
+// step report and the quality summary agree to the last bit.  Plain doubles
+// and selects only, so a loop over tets calling it vectorises (the guard's
+// star kernel); no fused multiply-add may be contracted (-ffp-contract=off),
+// so every build gives the same bits.
+struct TetKernel {
+    double det6;     // orient()
+    int sign;        // orient()
+    double stretch;  // 6 sqrt(6) V / (sum of face areas * longest edge), eq. 3.1 of papers 001 and 002
+    double cos[6];   // interior dihedral cosines in kEdgeVertex order, in [-1, 1]
+};
+
+BODT_KERNEL TetKernel tet_kernel(const Coords& p0, const Coords& p1, const Coords& p2, const Coords& p3) {
+    TetKernel k;
+    const Orientation o = orient(p0, p1, p2, p3);
+    k.det6 = o.det6;
+    k.sign = o.sign;
+    // Face normals as kFaceVertex orders them (face i opposite corner i,
+    // pointing out of a positive tet), their lengths (twice the face areas)
+    // and inverse lengths.
+    const Coords n[4] = {cross(p2 - p1, p3 - p1), cross(p3 - p0, p2 - p0), cross(p1 - p0, p3 - p0),
+                         cross(p2 - p0, p1 - p0)};
+    double len[4], inv[4];
     for (int i = 0; i < 4; ++i) {
-        const auto& f = kFaceVertex[i];
-        n[i] = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]);
-        const double len = n[i].norm();
-        area2 += len;
-        if (len > 0.0) n[i] /= len;
+        len[i] = std::sqrt(dot(n[i], n[i]));
+        inv[i] = 1.0 / len[i];
     }
-    TetShape s{0.0, {-1.0, 1.0}};
+    const double area2 = len[0] + len[1] + len[2] + len[3];
+    // The edges in kEdgeVertex order; the interior angle at an edge is pi
+    // minus the angle between the outward normals of its two faces
+    // (kEdgeFaces), 0 when one of them has no area.
+    const Coords e[6] = {p1 - p0, p2 - p0, p3 - p0, p2 - p1, p3 - p1, p3 - p2};
     double lmax2 = 0.0;
-    for (int e = 0; e < 6; ++e) {
-        lmax2 = std::max(lmax2, (p[kEdgeVertex[e][1]] - p[kEdgeVertex[e][0]]).squaredNorm());
-        const double c = -n[kEdgeFaces[e][0]].dot(n[kEdgeFaces[e][1]]);
-        s.cosines.of_min = std::max(s.cosines.of_min, c);
-        s.cosines.of_max = std::min(s.cosines.of_max, c);
+    for (int i = 0; i < 6; ++i) {
+        lmax2 = std::max(lmax2, dot(e[i], e[i]));
+        const int f = kEdgeFaces[i][0], g = kEdgeFaces[i][1];
+        const double c = -dot(n[f], n[g]) * inv[f] * inv[g];
+        k.cos[i] = len[f] > 0.0 && len[g] > 0.0 ? std::min(1.0, std::max(-1.0, c)) : 1.0;
     }
-    // Stretch (papers 001 and 002, eq. 3.1): 6 sqrt(6) V / (sum of face
-    // areas * longest edge) with V = six_v / 6 and the areas area2 / 2.
-    const double six_v = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
     const double denom = area2 * std::sqrt(lmax2);
-    s.stretch = denom > 0.0 ? 2.0 * std::sqrt(6.0) * six_v / denom : 0.0;
+    k.stretch = denom > 0.0 ? 2.0 * std::sqrt(6.0) * k.det6 / denom : 0.0;
+    return k;
+}
+
+inline TetKernel tet_kernel(const TetPoints& p) {
+    return tet_kernel(coords(p[0]), coords(p[1]), coords(p[2]), coords(p[3]));
+}
+
+// The guard's view of a kernel: stretch and extreme cosines, the worst
+// possible for a tet that is not positively oriented.
+BODT_KERNEL TetShape shape_of(const TetKernel& k) {
+    TetShape s{k.stretch, {-1.0, 1.0}};
+    for (int e = 0; e < 6; ++e) {
+        s.cosines.of_min = std::max(s.cosines.of_min, k.cos[e]);
+        s.cosines.of_max = std::min(s.cosines.of_max, k.cos[e]);
+    }
+    if (k.sign <= 0) s.cosines = {1.0, -1.0};
     return s;
 }
+
+inline TetShape tet_shape(const TetPoints& p) { return shape_of(tet_kernel(p)); }
 
 // Stretch: 1 for the regular tet, 0 when flat, negative when inverted.
 inline double stretch(const TetPoints& p) { return tet_shape(p).stretch; }
@@ -152,19 +225,8 @@ inline double min_dihedral_sine(const TetPoints& p) {
 // outward normals of the two faces that meet there.  Meaningful for
 // positively oriented tets only.
 inline std::array<double, 6> dihedral_cosines(const TetPoints& p) {
-    std::array<Vec3, 4> n;
-    for (int i = 0; i < 4; ++i) {
-        const auto& f = kFaceVertex[i];
-        n[i] = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]);
-    }
-    std::array<double, 6> out;
-    for (int e = 0; e < 6; ++e) {
-        const Vec3& na = n[kEdgeFaces[e][0]];
-        const Vec3& nb = n[kEdgeFaces[e][1]];
-        const double den = std::sqrt(na.squaredNorm() * nb.squaredNorm());
-        out[e] = std::clamp(den > 0.0 ? -na.dot(nb) / den : 1.0, -1.0, 1.0);
-    }
-    return out;
+    const TetKernel k = tet_kernel(p);
+    return {k.cos[0], k.cos[1], k.cos[2], k.cos[3], k.cos[4], k.cos[5]};
 }
 
 // The six interior dihedral angles in degrees, in kEdgeVertex order.

@@ -4,17 +4,42 @@
 
 namespace bodt {
 
-void add_star_tet(StarModel& m, const TetPoints& tet, int local) {
-    const Vec3& x0 = tet[local];
-    const auto& f = kFaceVertex[local];  // face opposite x0, normal pointing away from x0
-    const Vec3 area_in = -0.5 * (tet[f[1]] - tet[f[0]]).cross(tet[f[2]] - tet[f[0]]);  // S_tau n_tau
-    double L = 0.0;  // L_tau
-    for (int j = 0; j < 4; ++j)
-        if (j != local) L += (tet[j] - x0).squaredNorm();
-    const double vol = signed_volume(tet[0], tet[1], tet[2], tet[3]);
-    m.volume += vol;
-    m.Q.diagonal().array() += 0.25 * vol;  // 1/4 |Omega_0| |X|^2, eq. (6)
-    m.g += (L / 12.0) * area_in;           // eq. (7): (1/3) S n L over 4, see H in Alg. 2
+namespace {
+
+// Per tet of the star: its volume and its term of g (eq. 7), in columns of
+// `terms` (4 rows of n).  Summed by the caller in tet order, so the result
+// does not depend on the vector width.
+BODT_VECTOR_CLONES
+void star_terms(const double* face, size_t n, Coords x0, double* terms) {
+#pragma omp simd
+    for (size_t s = 0; s < n; ++s) {
+        const Coords a{face[s], face[3 * n + s], face[6 * n + s]};
+        const Coords b{face[n + s], face[4 * n + s], face[7 * n + s]};
+        const Coords c{face[2 * n + s], face[5 * n + s], face[8 * n + s]};
+        const Coords normal = cross(b - a, c - a);  // 2 S_tau, pointing away from x0
+        const Coords ya = a - x0, yb = b - x0, yc = c - x0;
+        const double L = dot(ya, ya) + dot(yb, yb) + dot(yc, yc);  // L_tau
+        const double w = -0.5 * (L / 12.0);  // eq. (7): (1/3) S n L over 4, see H in Alg. 2
+        terms[s] = dot(ya, normal) / 6.0;
+        terms[n + s] = w * normal.x;
+        terms[2 * n + s] = w * normal.y;
+        terms[3 * n + s] = w * normal.z;
+    }
+}
+
+}  // namespace
+
+void add_star(StarModel& m, const StarTable& star, const Vec3& x0, std::vector<double>& terms) {
+    const size_t n = star.size();
+    terms.resize(4 * n);
+    star_terms(star.opposite(), n, coords(x0), terms.data());
+    double volume = 0.0;
+    for (size_t s = 0; s < n; ++s) {
+        volume += terms[s];
+        m.g += Vec3(terms[n + s], terms[2 * n + s], terms[3 * n + s]);
+    }
+    m.volume += volume;
+    m.Q.diagonal().array() += 0.25 * volume;  // 1/4 |Omega_0| |X|^2, eq. (6)
 }
 
 Vec3 add_ring_triangle(StarModel& m, const Vec3& x0, const Vec3& yi, const Vec3& yj) {

@@ -18,6 +18,7 @@
 #pragma once
 
 #include "mesh/tet_mesh.hpp"
+#include "smoothing/star_table.hpp"
 
 #include <Eigen/Core>
 
@@ -35,10 +36,11 @@ struct StarModel {
     double volume = 0.0;  // |Omega_0|
 };
 
-// Adds one tet of the star: vertex x0 at local index `local` of `tet`.
-// S_tau n_tau is the area vector of the face opposite x0, pointing into the
-// tet; L_tau the sum of squared edge lengths from x0 (Alg. 1 step 1).
-void add_star_tet(StarModel& m, const TetPoints& tet, int local);
+// Adds the tets of the star of x0 (Alg. 1 step 1): |Omega_0|, and for each
+// tet tau the term of g with S_tau n_tau the area vector of the face
+// opposite x0, pointing into the tet, and L_tau the sum of squared edge
+// lengths from x0.  `terms` is scratch space.
+void add_star(StarModel& m, const StarTable& star, const Vec3& x0, std::vector<double>& terms);
 
 // Adds one boundary-ring triangle (x0, y_i, y_{i+1}), ordered so that
 // (y_i - x0) x (y_{i+1} - x0) points out of the star (paper 000 sec. 2.2).

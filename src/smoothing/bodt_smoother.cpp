@@ -6,14 +6,6 @@
 
 namespace bodt {
 
-namespace {
-
-int local_index(const Tet& t, int32_t v) {
-    return t[0] == v ? 0 : t[1] == v ? 1 : t[2] == v ? 2 : 3;
-}
-
-}  // namespace
-
 // The feature line's direction at v: orthogonal to the surface on both of
 // its sides, n_a x n_b with n_a, n_b the summed area vectors of the ring
 // triangles between the line's two neighbours on either side, so a vertex
@@ -89,15 +81,15 @@ bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) 
     return true;
 }
 
-Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, Vec3& target, std::vector<FaceKey>& surface_faces) {
+Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star, Vec3& target,
+                          std::vector<FaceKey>& surface_faces) {
     surface_faces.clear();
     const VertexClass c = classes_.cls[v];
     if (c != VertexClass::Interior && c != VertexClass::Surface && c != VertexClass::FeatureLine) return Plan::Stay;
 
     const Vec3& x0 = mesh.points[v];
     StarModel model;
-    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
-        add_star_tet(model, mesh.tet_points(*t), local_index(mesh.tets[*t], v));
+    add_star(model, star, x0, terms_);
     if (c == VertexClass::Interior) {
         // Algorithm 1, eq. (3): x* = x0 - 1/(2|Omega_0|) sum (1/3) S n L = x0 - 2 g / |Omega_0|.
         if (!(model.volume > 0.0)) return Plan::NotPositiveDefinite;

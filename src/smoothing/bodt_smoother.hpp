@@ -19,9 +19,11 @@ public:
     BodtSmoother(const RegionSurfaces& surfaces, const VertexClasses& classes)
         : surfaces_(surfaces), classes_(classes) {}
 
-    // The target of vertex v.  `surface_faces` receives the surface triangles
-    // around v (for the guard's normal-flip check); empty for inner vertices.
-    Plan target(const TetMesh& mesh, int32_t v, Vec3& target, std::vector<FaceKey>& surface_faces);
+    // The target of vertex v, whose star is in `star`.  `surface_faces`
+    // receives the surface triangles around v (for the guard's normal-flip
+    // check); empty for inner vertices.
+    Plan target(const TetMesh& mesh, int32_t v, const StarTable& star, Vec3& target,
+                std::vector<FaceKey>& surface_faces);
 
 private:
     // The directions v may move in without changing any region's volume or
@@ -36,6 +38,7 @@ private:
     std::vector<int32_t> ring_;        // scratch for the others
     std::vector<Vec3> normals_;  // one ring normal sum_i S_i n_i per surface at v (eq. B.1)
     std::vector<FaceKey> faces_;
+    std::vector<double> terms_;  // add_star()'s scratch
 };
 
 }  // namespace bodt

@@ -11,67 +11,86 @@ Vec3 face_normal(const TetMesh& mesh, const FaceKey& f) {
     return (mesh.points[f.v[1]] - a).cross(mesh.points[f.v[2]] - a);
 }
 
+// One star tet's shape from the corner table (column s of its 12 rows of
+// n); its stretch and cosines go to column s of `after`.  Returns whether it
+// passes the guard.
+BODT_KERNEL bool tet_check(const double* rows, size_t n, size_t s, double floor, const CosineRange& before,
+                           bool never_worse, double* after) {
+    const auto corner = [rows, n, s](size_t j) -> Coords {
+        return {rows[j * n + s], rows[(4 + j) * n + s], rows[(8 + j) * n + s]};
+    };
+    const TetKernel k = tet_kernel(corner(0), corner(1), corner(2), corner(3));
+    const TetShape shape = shape_of(k);
+    after[s] = shape.stretch;
+    after[n + s] = shape.cosines.of_min;
+    after[2 * n + s] = shape.cosines.of_max;
+    return k.sign > 0 && !(shape.stretch < floor) &&
+           !(never_worse && (shape.cosines.of_min > before.of_min || shape.cosines.of_max < before.of_max));
+}
+
+// Every star tet at once, in a loop the compiler vectorises.
+BODT_VECTOR_CLONES
+bool star_passes(const double* rows, size_t n, const double* floor, CosineRange before, bool never_worse,
+                 double* after) {
+    int bad = 0;
+#pragma omp simd reduction(| : bad)
+    for (size_t s = 0; s < n; ++s) bad |= !tet_check(rows, n, s, floor[s], before, never_worse, after);
+    return bad == 0;
+}
+
 }  // namespace
 
-ShapeCache tet_shapes(const TetMesh& mesh, int threads) {
-    ShapeCache shapes(mesh.tets.size());
-    const int32_t nt = mesh.num_tets();
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (int32_t t = 0; t < nt; ++t) shapes[static_cast<size_t>(t)] = tet_shape(mesh.tet_points(t));
-    return shapes;
+bool MoveGuard::tet_passes(size_t k) {
+    return tet_check(star_.corners(), star_.size(), k, floor_[k], star_before_, settings_.never_worse, after_.data());
 }
 
-bool MoveGuard::tet_acceptable(const TetMesh& mesh, int32_t t, size_t k, const CosineRange& star_before) {
-    const auto p = mesh.tet_points(t);
-    if (orient(p[0], p[1], p[2], p[3]).sign <= 0) return false;
-    const TetShape shape = after_[k] = tet_shape(p);
-    if (shape.stretch < std::min(settings_.min_stretch, before_[k].stretch)) return false;
-    return !(settings_.never_worse &&
-             (shape.cosines.of_min > star_before.of_min || shape.cosines.of_max < star_before.of_max));
-}
-
-bool MoveGuard::acceptable(const TetMesh& mesh, int32_t v, const CosineRange& star_before,
-                           const std::vector<FaceKey>& surface_faces) {
+bool MoveGuard::acceptable(const TetMesh& mesh, const std::vector<FaceKey>& surface_faces) {
     for (size_t k = 0; k < surface_faces.size(); ++k)
         if (!(face_normal(mesh, surface_faces[k]).dot(normals_[k]) > 0.0)) return false;
     // The tets that held the star's extreme angles fail most often: first.
-    const int32_t* star = mesh.star_begin(v);
     for (const size_t k : extreme_)
-        if (!tet_acceptable(mesh, star[k], k, star_before)) return false;
-    for (size_t k = 0; k < before_.size(); ++k)
-        if (k != extreme_[0] && k != extreme_[1] && !tet_acceptable(mesh, star[k], k, star_before)) return false;
-    return true;
+        if (!tet_passes(k)) return false;
+    return star_passes(star_.corners(), star_.size(), floor_.data(), star_before_, settings_.never_worse,
+                       after_.data());
 }
 
 MoveOutcome MoveGuard::move(TetMesh& mesh, int32_t v, const Vec3& target, const std::vector<FaceKey>& surface_faces,
                             double& distance) {
+    star_.gather(mesh, v);
+    return move_gathered(mesh, v, target, surface_faces, distance);
+}
+
+MoveOutcome MoveGuard::move_gathered(TetMesh& mesh, int32_t v, const Vec3& target,
+                                     const std::vector<FaceKey>& surface_faces, double& distance) {
     normals_.clear();
     for (const FaceKey& f : surface_faces) normals_.push_back(face_normal(mesh, f));
-    before_.clear();
-    CosineRange star_before{-1.0, 1.0};  // the star's smallest and largest angle
+    const size_t n = star_.size();
+    const int32_t* star = mesh.star_begin(v);
+    floor_.resize(n);
+    after_.resize(3 * n);
+    star_before_ = {-1.0, 1.0};
     extreme_ = {0, 0};
-    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t) {
-        const TetShape shape = cache_ ? (*cache_)[static_cast<size_t>(*t)] : tet_shape(mesh.tet_points(*t));
-        if (shape.cosines.of_min > star_before.of_min) {
-            star_before.of_min = shape.cosines.of_min;
-            extreme_[0] = before_.size();
+    for (size_t k = 0; k < n; ++k) {
+        const TetShape shape = cache_ ? (*cache_)[static_cast<size_t>(star[k])] : tet_shape(mesh.tet_points(star[k]));
+        if (shape.cosines.of_min > star_before_.of_min) {
+            star_before_.of_min = shape.cosines.of_min;
+            extreme_[0] = k;
         }
-        if (shape.cosines.of_max < star_before.of_max) {
-            star_before.of_max = shape.cosines.of_max;
-            extreme_[1] = before_.size();
+        if (shape.cosines.of_max < star_before_.of_max) {
+            star_before_.of_max = shape.cosines.of_max;
+            extreme_[1] = k;
         }
-        before_.push_back(shape);
+        floor_[k] = std::min(settings_.min_stretch, shape.stretch);
     }
-    after_.resize(before_.size());
     const Vec3 start = mesh.points[v];
     Vec3 step = target - start;
     for (int attempt = 0; attempt <= settings_.backtrack_steps; ++attempt, step *= 0.5) {
         mesh.points[v] = start + step;
-        if (acceptable(mesh, v, star_before, surface_faces)) {
-            if (cache_) {
-                const int32_t* star = mesh.star_begin(v);
-                for (size_t k = 0; k < after_.size(); ++k) (*cache_)[static_cast<size_t>(star[k])] = after_[k];
-            }
+        star_.place(mesh.points[v]);
+        if (acceptable(mesh, surface_faces)) {
+            if (cache_)
+                for (size_t k = 0; k < n; ++k)
+                    (*cache_)[static_cast<size_t>(star[k])] = {after_[k], {after_[n + k], after_[2 * n + k]}};
             distance = step.norm();
             return attempt == 0 ? MoveOutcome::Moved : MoveOutcome::Shortened;
         }

@@ -5,6 +5,8 @@
 #pragma once
 
 #include "mesh/tet_mesh.hpp"
+#include "quality/mesh_quality.hpp"
+#include "smoothing/star_table.hpp"
 
 #include <array>
 #include <vector>
@@ -19,10 +21,6 @@ struct GuardSettings {
 
 enum class MoveOutcome { Moved, Shortened, Rejected };
 
-// tet_shape() of every tet, for a sweep's guards to share (tet_shapes()).
-using ShapeCache = std::vector<TetShape>;
-ShapeCache tet_shapes(const TetMesh& mesh, int threads);
-
 class MoveGuard {
 public:
     // With a cache (of the mesh as it is, kept up to date by the moves), a
@@ -36,19 +34,25 @@ public:
     // boundary/interface triangles around v that must not flip.
     MoveOutcome move(TetMesh& mesh, int32_t v, const Vec3& target, const std::vector<FaceKey>& surface_faces,
                      double& distance);
+    // The same with v's star already in star() (gathered, as the mesh is).
+    MoveOutcome move_gathered(TetMesh& mesh, int32_t v, const Vec3& target, const std::vector<FaceKey>& surface_faces,
+                              double& distance);
+    StarTable& star() { return star_; }
 
 private:
-    bool acceptable(const TetMesh& mesh, int32_t v, const CosineRange& star_before,
-                    const std::vector<FaceKey>& surface_faces);
-    // Star tet t (the k-th around the vertex) passes the guard; its shape
-    // goes to after_[k].
-    bool tet_acceptable(const TetMesh& mesh, int32_t t, size_t k, const CosineRange& star_before);
+    // Star tet k passes the guard with v where star_ has it (a scalar check,
+    // for the tets most likely to fail).
+    bool tet_passes(size_t k);
+    bool acceptable(const TetMesh& mesh, const std::vector<FaceKey>& surface_faces);
 
     GuardSettings settings_;
     ShapeCache* cache_;
-    std::vector<TetShape> before_, after_;  // of each star tet (reused)
-    std::vector<Vec3> normals_;    // normal of each watched face before the move (reused)
-    std::array<size_t, 2> extreme_{};  // star tets with the smallest and the largest angle before
+    StarTable star_;
+    std::vector<double> floor_;      // each star tet's stretch floor
+    std::vector<double> after_;      // 3 rows of star size: each star tet's stretch, cosines of_min, of_max at the place tried
+    std::vector<Vec3> normals_;      // normal of each watched face before the move (reused)
+    CosineRange star_before_{-1.0, 1.0};  // the star's smallest and largest angle before
+    std::array<size_t, 2> extreme_{};     // star tets with the smallest and the largest angle before
 };
 
 }  // namespace bodt

@@ -20,11 +20,10 @@ Plan NodtSmoother::target(const TetMesh& mesh, int32_t v, Vec3& target, std::vec
     if (c != VertexClass::Interior && c != VertexClass::Surface && c != VertexClass::FeatureLine) return Plan::Stay;
     if (c != VertexClass::Interior && !input_.projects(v, c)) return Plan::Stay;
 
+    StarTable& star = guard_.star();  // move() uses it as gathered here
+    star.gather(mesh, v);
     StarModel model;
-    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t) {
-        const Tet& q = mesh.tets[*t];
-        add_star_tet(model, mesh.tet_points(*t), static_cast<int>(std::find(q.begin(), q.end(), v) - q.begin()));
-    }
+    add_star(model, star, mesh.points[v], terms_);
     if (!(model.volume > 0.0)) return Plan::NotPositiveDefinite;
     target = mesh.points[v] - (2.0 / model.volume) * model.g;  // eq. (3) over the star as it is
 
@@ -46,7 +45,7 @@ MoveOutcome NodtSmoother::move(TetMesh& mesh, int32_t v, const Vec3& target,
     for (int attempt = 0; attempt <= halvings_; ++attempt, f *= 0.5) {
         Vec3 at = start + f * (target - start);
         if (c != VertexClass::Interior) at = input_.project(v, c, at);
-        if (guard_.move(mesh, v, at, surface_faces, distance) != MoveOutcome::Rejected)
+        if (guard_.move_gathered(mesh, v, at, surface_faces, distance) != MoveOutcome::Rejected)
             return attempt == 0 ? MoveOutcome::Moved : MoveOutcome::Shortened;
     }
     return MoveOutcome::Rejected;

@@ -42,7 +42,8 @@ public:
     Plan target(const TetMesh& mesh, int32_t v, Vec3& target, std::vector<FaceKey>& surface_faces);
 
     // Moves v towards `target` through the guard, projected onto the input
-    // surface; `distance` receives the length of the move made.
+    // surface; `distance` receives the length of the move made.  Follows
+    // target() for the same v, whose star it reuses.
     MoveOutcome move(TetMesh& mesh, int32_t v, const Vec3& target, const std::vector<FaceKey>& surface_faces,
                      double& distance);
 
@@ -53,6 +54,7 @@ private:
     MoveGuard guard_;  // tries one position: the halving is done here
     int halvings_;
     std::vector<int32_t> ring_;
+    std::vector<double> terms_;  // add_star()'s scratch
 };
 
 }  // namespace bodt
