@@ -295,13 +295,13 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
         saved_geometry = geometry_;
     }
     StepReport report;
-    ShapeCache shapes;  // of every tet after a sweep, when nothing else changed the mesh
+    ShapeCache shapes;  // of every tet: kept up to date by the sweep, made anew after other changes
     try {
         if (mode_ == BODT_MODE_PHASED_ODT) {
             step_phased(mesh, surfaces, report);
         } else {
             if (ops() & BODT_OP_SMOOTH) sweep(mesh, surfaces, shapes, report);
-            if (change_topology(mesh, surfaces, report)) shapes.clear();
+            if (change_topology(mesh, surfaces, report)) shapes = ShapeCache();  // freed, then made anew
         }
         for (const Vec3& p : mesh.points)
             if (!p.allFinite()) throw Error(BODT_ERR_NUMERIC, "a vertex position became non-finite");
@@ -318,7 +318,8 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
         throw;
     }
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
-    const QualityExtremes q = shapes.empty() ? quality_extremes(mesh, threads) : quality_extremes(shapes, threads);
+    if (shapes.empty()) shapes = tet_shapes(mesh, threads);
+    const QualityExtremes q = quality_extremes(shapes, threads);
     report.step = ++steps_done_;
     report.min_dihedral = q.min_dihedral;
     report.max_dihedral = q.max_dihedral;

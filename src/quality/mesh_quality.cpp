@@ -41,26 +41,6 @@ QualitySummary summarize_quality(const TetMesh& mesh) {
 
 namespace {
 
-// tet_shape() counts a tet that is not positively oriented as 0 and 180
-// degrees, as summarize_quality does; its cosines are compared before the
-// arc cosine, which is decreasing: acos(largest cosine) is the smallest angle.
-struct ShapeRange {
-    double cos_of_min = -1.0, cos_of_max = 1.0, min_stretch = 1.0;
-
-    void widen(const TetShape& s) {
-        cos_of_min = std::max(cos_of_min, s.cosines.of_min);
-        cos_of_max = std::min(cos_of_max, s.cosines.of_max);
-        min_stretch = std::min(min_stretch, s.stretch);
-    }
-    QualityExtremes in_degrees() const {
-        constexpr double kDegrees = 180.0 / M_PI;
-        return {std::acos(cos_of_min) * kDegrees, std::acos(cos_of_max) * kDegrees, min_stretch};
-    }
-};
-
-#pragma omp declare reduction(widen : ShapeRange : omp_out.widen({omp_in.min_stretch, {omp_in.cos_of_min, omp_in.cos_of_max}}))
-
-
 // tet_shape() of tets [first, first + n) to out[0 .. n): their corners
 // gathered into a table (12 rows of n: x of corners 0..3, then y, then z)
 // for a loop that vectorises.
@@ -70,10 +50,7 @@ BODT_VECTOR_CLONES
 void block_shapes(const double* rows, size_t n, TetShape* out) {
 #pragma omp simd
     for (size_t s = 0; s < n; ++s) {
-        const auto corner = [rows, n, s](size_t j) -> Coords {
-            return {rows[j * n + s], rows[(4 + j) * n + s], rows[(8 + j) * n + s]};
-        };
-        out[s] = shape_of(tet_kernel(corner(0), corner(1), corner(2), corner(3)));
+        out[s] = shape_of(tet_kernel(rows, n, s));
     }
 }
 
@@ -91,25 +68,6 @@ void shapes_of(const TetMesh& mesh, int32_t first, size_t n, double* rows, TetSh
 }
 
 }  // namespace
-
-QualityExtremes quality_extremes(const TetMesh& mesh, int threads) {
-    ShapeRange range;
-    const int32_t nt = mesh.num_tets();
-    const int32_t blocks = static_cast<int32_t>((static_cast<size_t>(nt) + kBlock - 1) / kBlock);
-#pragma omp parallel num_threads(threads) reduction(widen : range)
-    {
-        double rows[12 * kBlock];
-        TetShape shapes[kBlock];
-#pragma omp for schedule(static)
-        for (int32_t b = 0; b < blocks; ++b) {
-            const int32_t first = b * static_cast<int32_t>(kBlock);
-            const size_t n = std::min(kBlock, static_cast<size_t>(nt - first));
-            shapes_of(mesh, first, n, rows, shapes);
-            for (size_t s = 0; s < n; ++s) range.widen(shapes[s]);
-        }
-    }
-    return range.in_degrees();
-}
 
 ShapeCache tet_shapes(const TetMesh& mesh, int threads) {
     ShapeCache shapes(mesh.tets.size());
@@ -129,11 +87,21 @@ ShapeCache tet_shapes(const TetMesh& mesh, int threads) {
 }
 
 QualityExtremes quality_extremes(const ShapeCache& shapes, int threads) {
-    ShapeRange range;
+    // tet_shape() counts a tet that is not positively oriented as 0 and 180
+    // degrees, as summarize_quality does; cosines are compared before the
+    // arc cosine, which is decreasing: acos(largest cosine) is the smallest angle.
+    double cos_of_min = -1.0, cos_of_max = 1.0, min_stretch = 1.0;
     const int64_t n = static_cast<int64_t>(shapes.size());
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(widen : range)
-    for (int64_t t = 0; t < n; ++t) range.widen(shapes[static_cast<size_t>(t)]);
-    return range.in_degrees();
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : cos_of_min) \
+    reduction(min : cos_of_max, min_stretch)
+    for (int64_t t = 0; t < n; ++t) {
+        const TetShape& s = shapes[static_cast<size_t>(t)];
+        cos_of_min = std::max(cos_of_min, s.cosines.of_min);
+        cos_of_max = std::min(cos_of_max, s.cosines.of_max);
+        min_stretch = std::min(min_stretch, s.stretch);
+    }
+    constexpr double kDegrees = 180.0 / M_PI;
+    return {std::acos(cos_of_min) * kDegrees, std::acos(cos_of_max) * kDegrees, min_stretch};
 }
 
 void tet_measures(const TetMesh& mesh, TetMeasure measure, std::vector<double>& out) {

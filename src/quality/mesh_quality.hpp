@@ -26,18 +26,17 @@ struct QualitySummary {
 
 QualitySummary summarize_quality(const TetMesh& mesh);
 
-// The extremes of summarize_quality alone (the same values), without an
-// arc cosine per angle, on `threads` OpenMP threads: what a step reports.
-struct QualityExtremes {
-    double min_dihedral, max_dihedral, min_stretch;
-};
-QualityExtremes quality_extremes(const TetMesh& mesh, int threads);
-
 // tet_shape() of every tet: what the guards of a sweep share, kept up to
 // date by their moves.
 using ShapeCache = std::vector<TetShape>;
 ShapeCache tet_shapes(const TetMesh& mesh, int threads);
-// quality_extremes() of the mesh whose tet_shapes() these are.
+
+// The extremes of summarize_quality alone (the same values) from the
+// mesh's tet_shapes(), without an arc cosine per angle, on `threads`
+// OpenMP threads: what a step reports.
+struct QualityExtremes {
+    double min_dihedral, max_dihedral, min_stretch;
+};
 QualityExtremes quality_extremes(const ShapeCache& shapes, int threads);
 
 int dihedral_bin(double degrees);

@@ -153,6 +153,14 @@ BODT_KERNEL TetKernel tet_kernel(const Coords& p0, const Coords& p1, const Coord
     return k;
 }
 
+// Column s of a corner table: 12 rows of n, x of corners 0..3, then y, then z.
+BODT_KERNEL TetKernel tet_kernel(const double* rows, size_t n, size_t s) {
+    const auto corner = [rows, n, s](size_t j) -> Coords {
+        return {rows[j * n + s], rows[(4 + j) * n + s], rows[(8 + j) * n + s]};
+    };
+    return tet_kernel(corner(0), corner(1), corner(2), corner(3));
+}
+
 inline TetKernel tet_kernel(const TetPoints& p) {
     return tet_kernel(coords(p[0]), coords(p[1]), coords(p[2]), coords(p[3]));
 }

@@ -16,10 +16,7 @@ Vec3 face_normal(const TetMesh& mesh, const FaceKey& f) {
 // passes the guard.
 BODT_KERNEL bool tet_check(const double* rows, size_t n, size_t s, double floor, const CosineRange& before,
                            bool never_worse, double* after) {
-    const auto corner = [rows, n, s](size_t j) -> Coords {
-        return {rows[j * n + s], rows[(4 + j) * n + s], rows[(8 + j) * n + s]};
-    };
-    const TetKernel k = tet_kernel(corner(0), corner(1), corner(2), corner(3));
+    const TetKernel k = tet_kernel(rows, n, s);
     const TetShape shape = shape_of(k);
     after[s] = shape.stretch;
     after[n + s] = shape.cosines.of_min;

@@ -90,16 +90,6 @@ const std::string& temp_file() {
 
 void remove_temp_file() { std::remove(temp_file().c_str()); }
 
-void write_file(const std::string& path, const uint8_t* data, size_t size) {
-    FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) {
-        std::perror(path.c_str());
-        std::abort();
-    }
-    if (size > 0 && std::fwrite(data, 1, size, f) != size) std::abort();
-    if (std::fclose(f) != 0) std::abort();
-}
-
 // ------------------------------------------------------------ decoding
 
 struct Input {

@@ -71,16 +71,6 @@ void remove_temp_dir() {
     rmdir(temp_dir().c_str());
 }
 
-void write_file(const std::string& path, const uint8_t* data, size_t size) {
-    FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) {
-        std::perror(path.c_str());
-        std::abort();
-    }
-    if (size > 0 && std::fwrite(data, 1, size, f) != size) std::abort();
-    if (std::fclose(f) != 0) std::abort();
-}
-
 void check_index(int32_t v, int base, size_t nverts) {
     FUZZ_CHECK(int64_t(v) >= base && int64_t(v) < int64_t(base) + int64_t(nverts));
 }
