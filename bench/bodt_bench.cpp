@@ -2,16 +2,17 @@
 //
 // For every case (a tet mesh: TetGen meshes of surfaces, mesh files, a random
 // sphere, jittered boxes; with --scale the jittered and stretched boxes of
-// 1e4 to 1e7 tets) and every variant (a mode plus the operations a step does,
-// BODT_PARAM_OPS, and the threads of a sweep, BODT_PARAM_THREADS) it creates
-// the mesh through the public C API, sets the mode and the operations, runs
-// a fixed number of bodt_step calls, and records the quality before and
-// after, the counts before and after (flips and insertions change them), the
-// relative Hausdorff distance of the boundary, the wall time of the steps
-// alone, the minimum angle after every step, the memory the mesh takes in
-// the library and the peak memory.  Everything after the run is measured on
-// the mesh the handle holds then (its counts, tets and boundary), never on
-// the input arrays.
+// 1e4 to 1e7 tets, and the jittered ones numbered at random) and every
+// variant (a mode plus the operations a step does, BODT_PARAM_OPS, and the
+// threads of a sweep, BODT_PARAM_THREADS) it creates the mesh through the
+// public C API, sets the mode and the operations, runs a fixed number of
+// bodt_step calls, and records the quality before and after, the counts
+// before and after (flips and insertions change them), the relative
+// Hausdorff distance of the boundary, the wall time of the create and of
+// the steps alone, the minimum angle after every step, the memory the mesh
+// takes in the library and the peak memory.  Everything after the run is
+// measured on the mesh the handle holds then (its counts, tets and
+// boundary), never on the input arrays.
 //
 // The peers -- TetGen's and Gmsh's optimisers (peers.hpp) -- run on the same
 // inputs as further variants: the input is written to a file, the peer's
@@ -56,6 +57,7 @@
 #include <regex>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #ifndef BODT_BENCH_DEFAULT_SHARED
@@ -289,7 +291,8 @@ void usage(FILE* f) {
                  "  --large              add the ~1e5-tet jittered box, the ~1.5e5-tet lazy cube and the\n"
                  "                       6420-point random sphere\n"
                  "  --scale              the scale series instead: jittered and stretched (x 1.5) Kuhn\n"
-                 "                       boxes of ~1e4, 1e5, 1e6 (and 1e7) tets\n"
+                 "                       boxes of ~1e4, 1e5, 1e6 (and 1e7) tets, and up to 1e6 tets\n"
+                 "                       the jittered ones numbered at random (.shuffled)\n"
                  "  --scale-max TETS     largest box of --scale (default 1e6; 1e7 adds the 1e7-tet box)\n"
                  "  --no-hausdorff       skip the Hausdorff distance (null in the output)\n"
                  "  --cases REGEX        only cases whose name matches (ECMAScript regex, searched)\n"
@@ -626,6 +629,7 @@ struct RunResult {
     int32_t regions;
     double hausdorff_abs, hausdorff_rel, hausdorff_rel_upper, bbox_side;
     double time_s, cpu_s, hausdorff_time_s;
+    double create_s;  // bodt_mesh_create (with the boundary faces) or bodt_mesh_read, NaN for a peer
     int64_t vertices_moved, moves_rejected, moves_shortened;
     int64_t flips, inserted, collapsed;  // sums over the steps
     int32_t vertices_changed;            // -1: not comparable (a peer renumbered)
@@ -663,7 +667,7 @@ RunResult empty_result() {
     for (double& v : r.params) v = NAN;
     r.volume_change_rel = r.region_volume_change_rel_max = r.hausdorff_abs = r.hausdorff_rel = NAN;
     r.hausdorff_rel_upper = r.bbox_side = NAN;
-    r.cpu_s = r.lib_bytes_create = r.lib_bytes_after = r.rss_bytes_create = NAN;
+    r.cpu_s = r.create_s = r.lib_bytes_create = r.lib_bytes_after = r.rss_bytes_create = NAN;
     r.peer_refine_s = r.peer_process_s = NAN;
     return r;
 }
@@ -817,6 +821,7 @@ RunResult run_one(const Case& c, PreparedMesh& pm, const Variant& var, const Opt
     int st;
     int index_base = 0;
     const int64_t heap0 = bench::heap_in_use(), rss0 = bench::rss_bytes();
+    const auto create0 = std::chrono::steady_clock::now();
     if (pm.from_file) {
         st = bodt_mesh_read(pm.path.c_str(), &mh.m);
         if (st != BODT_OK) return fail("error", "bodt_mesh_read", errmsg(nullptr, st));
@@ -831,7 +836,9 @@ RunResult run_one(const Case& c, PreparedMesh& pm, const Variant& var, const Opt
             if (st != BODT_OK) return fail("error", "bodt_mesh_set_boundary_faces", errmsg(mh.m, st));
         }
     }
+    const double create_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - create0).count();
     const int64_t heap1 = bench::heap_in_use(), rss1 = bench::rss_bytes();
+    if (!var.is_peer()) r.create_s = create_s;
     if (heap0 >= 0 && heap1 >= 0) r.lib_bytes_create = double(heap1 - heap0);
     if (rss0 >= 0 && rss1 >= 0) r.rss_bytes_create = double(rss1 - rss0);
     if (release_inputs) {
@@ -1181,6 +1188,7 @@ std::string result_json(const Row& row, size_t m, const Options& opt) {
         o += ",\"vertices_changed\":" + (r.vertices_changed >= 0 ? std::to_string(r.vertices_changed) : "null");
         o += ",\"hausdorff_time_s\":" + json_num(r.hausdorff_time_s, "%.3f");
         if (!var.is_peer()) {
+            o += ",\"create_s\":" + json_num(r.create_s, "%.4f");
             o += ",\"cpu_time_s\":" + json_num(r.cpu_s, "%.4f");
             o += ",\"parallelism\":" + json_num(parallelism(r), "%.3f");
             o += ",\"vertices_moved\":" + std::to_string(r.vertices_moved);
@@ -1244,7 +1252,14 @@ size_t main_variant(const Options& opt) {
 }
 
 bool is_shared_case(const Case& c) { return c.kind == "tetgen-surface" || c.kind == "file"; }
-bool is_box_case(const Case& c) { return c.kind == "box" || c.kind == "box-stretched"; }
+bool is_box_case(const Case& c) { return c.kind == "box" || c.kind == "box-stretched" || c.kind == "box-shuffled"; }
+
+// The scale series of a kind of box: its target id's suffix and what its boxes are.
+std::pair<std::string, std::string> box_series(const std::string& kind) {
+    if (kind == "box") return {"jitter", "jittered"};
+    if (kind == "box-stretched") return {"stretch", "stretched"};
+    return {"shuffled", "shuffled"};
+}
 
 std::string secs_cell(double s) {
     if (!std::isfinite(s)) return s > 0 ? "never" : "–";
@@ -1385,9 +1400,8 @@ std::vector<Target> targets(const std::vector<Row>& rows, const Options& opt, st
             const double r_large = pts.back().second * 1e4 / pts.back().first;
             Target t;
             const std::string variant = key.substr(0, key.find('|')), kind = key.substr(key.find('|') + 1);
-            t.id = "c." + variant + "." + (kind == "box" ? "jitter" : "stretch");
-            t.what = "time linear in size: " + variant + " on the " + (kind == "box" ? "jittered" : "stretched") +
-                     " boxes";
+            t.id = "c." + variant + "." + box_series(kind).first;
+            t.what = "time linear in size: " + variant + " on the " + box_series(kind).second + " boxes";
             t.number = slope;
             t.bar = fmt("log-log slope <= %.2f over 1e4..1e7 tets", kSlopeBar);
             t.value = fmt("slope %.3f over %.3g..%.3g tets; s per 10k tets %.3g -> %.3g (ratio %.2f)", slope,
@@ -1414,21 +1428,23 @@ std::vector<Target> targets(const std::vector<Row>& rows, const Options& opt, st
                 const RunResult& r = row.runs[m];
                 if (opt.variants[m].is_peer()) continue;
                 if (!ran_ok(r)) {
-                    tb += fmt("| %s | %s | %s | | | | | | | | | |\n", row.c->name.c_str(), opt.variants[m].name.c_str(),
-                              r.status);
+                    tb += fmt("| %s | %s | %s | | | | | | | | | | |\n", row.c->name.c_str(),
+                              opt.variants[m].name.c_str(), r.status);
                     continue;
                 }
-                tb += fmt("| %s | %s | %d | %d | %.2f | %.3g | %.3g | %.3g | %.2f | %.0f / %.0f | %.0f | %.2f/%.2f |\n",
-                          row.c->name.c_str(), opt.variants[m].name.c_str(), r.before.tets, r.threads_used, r.time_s,
+                tb += fmt("| %s | %s | %d | %d | %.2f | %.2f | %.3g | %.3g | %.3g | %.2f | %.0f / %.0f | %.0f | "
+                          "%.2f/%.2f |\n",
+                          row.c->name.c_str(), opt.variants[m].name.c_str(), r.before.tets, r.threads_used, r.create_s,
+                          r.time_s,
                           r.time_s * 1e4 / r.before.tets, r.updates_per_s, updates_per_thread(r), parallelism(r),
                           bytes_per_tet(r), bytes_per_tet_after(r), r.peak_rss_mb, r.after.min_dihedral,
                           r.after.max_dihedral);
             }
         }
         if (!tb.empty())
-            scale_table = "| case | variant | tets | threads | s | s / 10k tets | updates/s | updates/s/thread | "
-                          "parallelism | B/tet create / after | peak RSS MB | min/max after |\n"
-                          "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n" +
+            scale_table = "| case | variant | tets | threads | create s | s | s / 10k tets | updates/s | "
+                          "updates/s/thread | parallelism | B/tet create / after | peak RSS MB | min/max after |\n"
+                          "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n" +
                           tb;
     }
 
@@ -1788,7 +1804,8 @@ std::string markdown(const std::vector<Row>& rows, const Options& opt, const std
 
     // ---- table 4: size and speed
     if (!scale_table.empty()) {
-        md += "\n## Size and speed\n\nThe box cases: s = the steps' wall time; updates = vertices moved + moves "
+        md += "\n## Size and speed\n\nThe box cases (.shuffled: the jittered box numbered at random): create s = "
+              "the wall time of bodt_mesh_create; s = the steps' wall time; updates = vertices moved + moves "
               "rejected (guarded vertex updates); threads = BODT_PARAM_THREADS as used (0 resolved to OpenMP's "
               "default); parallelism = CPU seconds / wall seconds of the steps; B/tet = heap growth across "
               "bodt_mesh_create per input tet, and that plus the growth from bodt_set_mode to the end of the steps "

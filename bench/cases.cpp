@@ -164,6 +164,29 @@ bool make_jittered_box(int n, double amplitude, uint64_t seed, MeshArrays& m, st
     return true;
 }
 
+// Renumbers the vertices and the tets of m at random (Fisher-Yates with
+// `seed`), each tet keeping its vertex order: the same mesh as a caller with
+// no order of its own would give it.
+void shuffle_numbering(MeshArrays& m, uint64_t seed) {
+    Rng rng(seed);
+    const auto permutation = [&rng](size_t n) {
+        std::vector<int32_t> p(n);
+        for (size_t i = 0; i < n; ++i) p[i] = int32_t(i);
+        for (size_t i = n; i > 1; --i) std::swap(p[i - 1], p[size_t(rng.uniform() * double(i))]);
+        return p;
+    };
+    const size_t nv = m.xyz.size() / 3, nt = m.tets.size() / 4;
+    const std::vector<int32_t> vp = permutation(nv), tp = permutation(nt);
+    std::vector<double> xyz(m.xyz.size());
+    for (size_t v = 0; v < nv; ++v)
+        for (int c = 0; c < 3; ++c) xyz[3 * size_t(vp[v]) + size_t(c)] = m.xyz[3 * v + size_t(c)];
+    std::vector<int32_t> tets(m.tets.size());
+    for (size_t t = 0; t < nt; ++t)
+        for (int c = 0; c < 4; ++c) tets[4 * size_t(tp[t]) + size_t(c)] = vp[size_t(m.tets[4 * t + size_t(c)])];
+    m.xyz.swap(xyz);
+    m.tets.swap(tets);
+}
+
 // ------------------------------------------------------ lazy triangulation
 
 // Sign of the orientation determinant 6V, certified as the library certifies
@@ -498,6 +521,25 @@ Case box_case(int n, double stretch) {
     return c;
 }
 
+// The jittered box of box_case(n, 1) with its vertices and tets numbered
+// at random (a fixed seed): what the library's internal order is for.
+constexpr uint64_t kShuffleSeed = 0x5eed5b0c;
+
+Case shuffled_box_case(int n) {
+    Case c = box_case(n, 1.0);
+    c.name = "box" + std::to_string(n) + ".shuffled";
+    c.kind = "box-shuffled";
+    c.source += ", vertices and tets numbered at random";
+    const auto make = c.prepare;
+    c.prepare = [make](PreparedMesh& pm, std::string& err) {
+        if (!make(pm, err)) return false;
+        shuffle_numbering(pm.arrays, kShuffleSeed);
+        pm.note += "; vertices and tets renumbered at random (seed " + std::to_string(kShuffleSeed) + ")";
+        return true;
+    };
+    return c;
+}
+
 // A tet mesh file for bodt_mesh_read.
 bool prepare_file(const std::string& path, const std::string& temp_dir, PreparedMesh& pm, std::string& err) {
     pm.from_file = true;
@@ -588,11 +630,12 @@ std::vector<Case> make_cases(const CaseOptions& opt, std::vector<std::string>& n
     std::vector<Case> cases;
     const std::string temp_dir = opt.temp_dir;
 
-    if (opt.scale) {  // the scale series alone: jittered, then stretched boxes
+    if (opt.scale) {  // the scale series alone: jittered, stretched, then shuffled boxes
         const std::vector<int> sizes = scale_box_sizes(opt.scale_max);
         if (sizes.empty()) notes.push_back("--scale-max below the smallest box (10368 tets): no case");
         for (double stretch : {1.0, kBoxStretch})
             for (int n : sizes) cases.push_back(box_case(n, stretch));
+        for (int n : scale_box_sizes(std::min(opt.scale_max, 1e6))) cases.push_back(shuffled_box_case(n));
         return cases;
     }
 

@@ -32,7 +32,7 @@ struct PreparedMesh {
 struct Case {
     std::string name;    // unique, file-name safe
     std::string kind;    // "tetgen-surface", "file", "random-sphere", "random-lazy",
-                         // "box", "box-stretched"
+                         // "box", "box-stretched", "box-shuffled"
     std::string source;  // the input file or a description
     // Makes the mesh; returns false with a message on failure.
     std::function<bool(PreparedMesh&, std::string&)> prepare;
@@ -42,7 +42,8 @@ struct CaseOptions {
     std::string shared_dir;      // "" = no shared meshes
     bool large = false;          // add the ~1e5-tet box, the ~1.5e5-tet lazy cube and the 6420-point sphere
     // The scale series instead of the bench set: jittered and stretched
-    // Kuhn boxes of n = 12, 26, 55, 119 (6 n^3 tets) up to scale_max tets.
+    // Kuhn boxes of n = 12, 26, 55, 119 (6 n^3 tets) up to scale_max tets,
+    // and the jittered ones up to 1e6 tets numbered at random (.shuffled).
     bool scale = false;
     double scale_max = 1e6;
     bool with_tetgen = false;    // filled in by the program (compiled with TetGen?)

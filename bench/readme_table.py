@@ -78,13 +78,14 @@ def bench_table(rows, order):
 
 
 def scale_table(rows, order):
-    print("| box | tets | variant | threads | s | s per 10k tets | updates/s | updates/s/thread | parallelism | B/tet | peak RSS MB | min / max after |")
-    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("| box | tets | variant | threads | create s | s | s per 10k tets | updates/s | updates/s/thread | parallelism | B/tet | peak RSS MB | min / max after |")
+    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for case in order:
         for name, r in rows[case].items():
             if r.get("peer") or r.get("status") != "ok":
                 continue
-            print(f'| {case} | {r["tets_in"]} | {r["variant_base"]} | {r["threads_used"]} | {r["time_s"]:.2f} '
+            create = f'{r["create_s"]:.2f}' if r.get("create_s") is not None else "–"  # older results lack it
+            print(f'| {case} | {r["tets_in"]} | {r["variant_base"]} | {r["threads_used"]} | {create} | {r["time_s"]:.2f} '
                   f'| {r["s_per_10k_tets"]:.3g} | {r["vertex_updates_per_s"]:.3g} | {r["updates_per_s_per_thread"]:.3g} '
                   f'| {r["parallelism"]:.2f} | {r["bytes_per_tet"]:.0f} / {r["bytes_per_tet_after"]:.0f} '
                   f'| {r["peak_rss_mb"]:.0f} | {angles(r["after"])} |')

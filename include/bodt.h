@@ -83,8 +83,32 @@ enum bodt_create_flag {
     BODT_CREATE_ACCEPT_INVERTED = 1,
     /* bodt_mesh_read_ex() only: the handle counts from 1 (Fortran) instead
      * of 0.  bodt_mesh_create_ex() refuses it: its index_base says. */
-    BODT_CREATE_ONE_BASED = 2
+    BODT_CREATE_ONE_BASED = 2,
+    /* Store the vertices and tets in the caller's order.  By default the
+     * library renumbers them internally along a space-filling (Hilbert)
+     * curve, so that neighbours lie close in memory: a mesh numbered at
+     * random is then created and smoothed as fast as a well-ordered one.
+     * The caller never sees that order (see "Internal order" below); this
+     * flag only costs speed on badly ordered input. */
+    BODT_CREATE_KEEP_ORDER = 4
 };
+
+/*
+ * Internal order.  Every index the library takes or gives is the caller's:
+ * vertex and tet arrays in and out, the vertices inside tets, faces and
+ * edges, vertex parents and tet origins, files written.  Vertices made by
+ * operations are appended after the input vertices.  While the
+ * connectivity is the input's, tets come back in the caller's order, each
+ * with its vertices in the caller's order; after a step that changed it,
+ * in the library's order (bodt_mesh_get_tet_origins names the caller's
+ * input tets).  Smoothing without connectivity changes gives the same
+ * result, bit for bit, in either order (it follows the caller's: vertices
+ * are coloured in the caller's order, stars and rings summed in it).
+ * What may depend on the internal order: which flips, insertions and
+ * collapses a step makes (they visit the bad tets in it), the serial sweep
+ * and geometry extraction of BODT_MODE_PHASED_ODT, and the last bits of
+ * the sums of bodt_mesh_quality (mean angle and stretch, volume).
+ */
 
 /*
  * Create a mesh from caller arrays, which are copied.
@@ -113,7 +137,8 @@ enum bodt_create_flag {
 BODT_API int bodt_mesh_create(int32_t nverts, const double *xyz, int32_t ntets,
                               const int32_t *tets, int index_base,
                               bodt_mesh **mesh);
-/* bodt_mesh_create() with bodt_create_flag bits. */
+/* bodt_mesh_create() with bodt_create_flag bits (ACCEPT_INVERTED,
+ * KEEP_ORDER). */
 BODT_API int bodt_mesh_create_ex(int32_t nverts, const double *xyz,
                                  int32_t ntets, const int32_t *tets,
                                  int index_base, uint32_t flags,
@@ -714,7 +739,8 @@ enum bodt_format {
  * read.
  */
 BODT_API int bodt_mesh_read(const char *path, bodt_mesh **mesh);
-/* bodt_mesh_read() with bodt_create_flag bits. */
+/* bodt_mesh_read() with bodt_create_flag bits (ACCEPT_INVERTED, ONE_BASED,
+ * KEEP_ORDER: the file's order is the caller's). */
 BODT_API int bodt_mesh_read_ex(const char *path, uint32_t flags,
                                bodt_mesh **mesh);
 /* bodt_mesh_read_ex() in the given enum bodt_format, whatever the

@@ -9,8 +9,15 @@
 //                         L-shaped (nonconvex) block and a ball: exactly the
 //                         boundary neighbours, turning around the outward
 //                         normal; build() refuses pinched vertices and edges
+//   curve_order           a permutation; on a shuffled 8^3 grid consecutive
+//                         vertices are grid neighbours (a Hilbert curve);
+//                         tets by their first vertex, ties in the caller's
+//                         order; bad input left in order; a mesh built in it
+//                         gives the caller's points and tets back, and its
+//                         stars list tets in the caller's order
 #include "common/error.hpp"
 #include "mesh/boundary_surface.hpp"
+#include "mesh/curve_order.hpp"
 #include "mesh/mesh_builder.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "quality/tet_geometry.hpp"
@@ -424,6 +431,93 @@ void test_surface_refuses_pinches(void**) {
     expect_surface_refused(keep_edge_pair, "not a manifold surface at edge");
 }
 
+// ------------------------------------------------------------ curve order
+
+void assert_inverse(const bodt::CallerNumbering& c, size_t nverts, size_t ntets) {
+    assert_int_equal(c.vertex_to_caller.size(), nverts);
+    assert_int_equal(c.vertex_from_caller.size(), nverts);
+    assert_int_equal(c.tet_to_caller.size(), ntets);
+    for (size_t v = 0; v < nverts; ++v) assert_int_equal(c.vertex_from_caller[c.vertex_to_caller[v]], v);
+    std::vector<int32_t> tets = c.tet_to_caller;
+    std::sort(tets.begin(), tets.end());
+    for (size_t t = 0; t < ntets; ++t) assert_int_equal(tets[t], t);
+}
+
+// The points of an 8^3 grid, numbered by a scrambling bijection: along the
+// curve each point is a grid neighbour of the one before.
+void test_curve_order_hilbert(void**) {
+    const int32_t n = 512;
+    std::vector<double> xyz(3 * n);
+    for (int32_t g = 0; g < n; ++g) {
+        const int32_t v = (g * 7919) % n;  // 7919 is odd: a bijection of [0, 512)
+        xyz[3 * v] = g % 8;
+        xyz[3 * v + 1] = (g / 8) % 8;
+        xyz[3 * v + 2] = g / 64;
+    }
+    const int32_t tet[4] = {1, 2, 3, 4};
+    const bodt::CallerNumbering c = bodt::curve_order(n, xyz.data(), 1, tet, 1);
+    assert_inverse(c, n, 1);
+    for (int32_t v = 1; v < n; ++v) {
+        const double* a = &xyz[3 * c.vertex_to_caller[v - 1]];
+        const double* b = &xyz[3 * c.vertex_to_caller[v]];
+        const double step = std::fabs(a[0] - b[0]) + std::fabs(a[1] - b[1]) + std::fabs(a[2] - b[2]);
+        if (step != 1.0) fail_msg("curve step %d jumps by %g", v, step);
+    }
+}
+
+void test_curve_order_tets(void**) {
+    test_mesh m{};
+    assert_int_equal(tm_make_cubes(&m, 4, 1.0, nullptr, nullptr, 0.2, 3), 0);
+    const bodt::CallerNumbering c = bodt::curve_order(m.nverts, m.xyz, m.ntets, m.tets, 0);
+    assert_inverse(c, static_cast<size_t>(m.nverts), static_cast<size_t>(m.ntets));
+    const auto first = [&](int32_t caller) {
+        int32_t f = m.nverts;
+        for (int k = 0; k < 4; ++k) f = std::min(f, c.vertex_from_caller[m.tets[4 * caller + k]]);
+        return f;
+    };
+    for (int32_t t = 1; t < m.ntets; ++t) {
+        const int32_t a = c.tet_to_caller[t - 1], b = c.tet_to_caller[t];
+        assert_true(first(a) < first(b) || (first(a) == first(b) && a < b));
+    }
+    // Deterministic: the same input, the same order.
+    const bodt::CallerNumbering again = bodt::curve_order(m.nverts, m.xyz, m.ntets, m.tets, 0);
+    assert_true(again.vertex_to_caller == c.vertex_to_caller && again.tet_to_caller == c.tet_to_caller);
+    // Input the validation must name in the caller's order stays in it.
+    m.tets[5] = m.nverts;
+    assert_true(bodt::curve_order(m.nverts, m.xyz, m.ntets, m.tets, 0).is_identity());
+    m.tets[5] = 0;
+    m.xyz[4] = NAN;
+    assert_true(bodt::curve_order(m.nverts, m.xyz, m.ntets, m.tets, 0).is_identity());
+    tm_free(&m);
+}
+
+void test_curve_order_mesh(void**) {
+    test_mesh m{};
+    assert_int_equal(tm_make_cubes(&m, 4, 1.0, nullptr, nullptr, 0.2, 3), 0);
+    bodt::MeshArrays a;
+    a.nverts = m.nverts;
+    a.xyz = m.xyz;
+    a.ntets = m.ntets;
+    a.tets = m.tets;
+    const bodt::BuiltMesh b = bodt::build_mesh_in_curve_order(a);
+    const bodt::TetMesh& mesh = b.mesh;
+    assert_false(mesh.caller.is_identity());
+    bool moved = false;
+    for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
+        const int32_t c = mesh.caller_vertex(v);
+        assert_int_equal(mesh.internal_vertex(c), v);
+        moved = moved || c != v;
+        for (int k = 0; k < 3; ++k) assert_true(mesh.points[v][k] == m.xyz[3 * c + k]);
+        for (const int32_t* t = mesh.star_begin(v) + 1; t < mesh.star_end(v); ++t)
+            assert_true(mesh.caller_tet(t[-1]) < mesh.caller_tet(t[0]));
+    }
+    assert_true(moved);
+    for (int32_t t = 0; t < mesh.num_tets(); ++t)
+        for (int k = 0; k < 4; ++k)
+            assert_int_equal(mesh.caller_vertex(mesh.tets[t][k]), m.tets[4 * mesh.caller_tet(t) + k]);
+    tm_free(&m);
+}
+
 }  // namespace
 
 int main() {
@@ -437,6 +531,9 @@ int main() {
         cmocka_unit_test(test_one_ring_ball),
         cmocka_unit_test(test_one_ring_negative_input),
         cmocka_unit_test(test_surface_refuses_pinches),
+        cmocka_unit_test(test_curve_order_hilbert),
+        cmocka_unit_test(test_curve_order_tets),
+        cmocka_unit_test(test_curve_order_mesh),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -54,7 +54,7 @@ module bodt
     BODT_ERR_IO = -6, BODT_ERR_CANCELLED = -7, BODT_ERR_UNSUPPORTED = -8
   ! enum bodt_create_flag
   integer(c_int32_t), parameter, public :: BODT_CREATE_DEFAULT = 0, BODT_CREATE_ACCEPT_INVERTED = 1, &
-    BODT_CREATE_ONE_BASED = 2
+    BODT_CREATE_ONE_BASED = 2, BODT_CREATE_KEEP_ORDER = 4
   ! enum bodt_vertex_class
   integer(c_int32_t), parameter, public :: &
     BODT_VERTEX_INTERIOR = 0, BODT_VERTEX_SURFACE = 1, BODT_VERTEX_FEATURE_LINE = 2, &

@@ -18,7 +18,8 @@ using namespace bodt_capi;
 namespace {
 
 bodt_mesh* make_handle(const bodt::MeshArrays& arrays) {
-    bodt::BuiltMesh built = bodt::build_mesh(arrays);
+    bodt::BuiltMesh built = (arrays.flags & BODT_CREATE_KEEP_ORDER) ? bodt::build_mesh(arrays)
+                                                                     : bodt::build_mesh_in_curve_order(arrays);
     auto* h = new bodt_mesh;
     h->mesh = std::move(built.mesh);
     h->surfaces = std::move(built.surfaces);
@@ -41,7 +42,8 @@ bool is_mesh_face(const bodt::TetMesh& mesh, const bodt::FaceKey& k) {
 // everything as it was.
 void apply_regions(bodt_mesh* h, const int32_t* region_ids) {
     require(region_ids != nullptr, "region_ids is NULL");
-    std::vector<int32_t> old(region_ids, region_ids + h->mesh.tets.size());
+    std::vector<int32_t> old(h->mesh.tets.size());
+    for (int32_t t = 0; t < h->mesh.num_tets(); ++t) old[t] = region_ids[h->mesh.caller_tet(t)];
     h->mesh.regions.swap(old);
     bodt::RegionSurfaces surfaces;
     try {
@@ -74,23 +76,22 @@ void apply_feature_edges(bodt_mesh* h, int32_t nedges, const int32_t* edges, con
     const int base = h->index_base;
     bodt::EdgeRefs fresh;
     for (int32_t e = 0; e < nedges; ++e) {
-        int32_t v[2];
+        int32_t c[2], v[2];  // the caller's indices (for messages) and the internal ones
         for (int k = 0; k < 2; ++k) {
-            v[k] = edges[2 * static_cast<size_t>(e) + k];
-            bodt::check_vertex_index(v[k], mesh.num_vertices(), base, "feature edge", e);
-            v[k] -= base;
+            c[k] = edges[2 * static_cast<size_t>(e) + k];
+            bodt::check_vertex_index(c[k], mesh.num_vertices(), base, "feature edge", e);
+            v[k] = mesh.internal_vertex(c[k] - base);
         }
         if (v[0] == v[1] || !is_surface_edge(mesh, v[0], v[1]))
             throw Error(BODT_ERR_INVALID_ARGUMENT, "feature edge " + std::to_string(e + base) + " (" +
-                                                       std::to_string(v[0] + base) + ", " +
-                                                       std::to_string(v[1] + base) +
+                                                       std::to_string(c[0]) + ", " + std::to_string(c[1]) +
                                                        ") is not an edge of a boundary or interface face");
         const int32_t ref = refs ? refs[e] : 0;
         const auto [it, added] = fresh.emplace(bodt::edge_key(v[0], v[1]), ref);
         if (!added && it->second != ref)
             throw Error(BODT_ERR_INVALID_ARGUMENT, "feature edge " + std::to_string(e + base) + " (" +
-                                                       std::to_string(v[0] + base) + ", " +
-                                                       std::to_string(v[1] + base) + ") is listed before with ref " +
+                                                       std::to_string(c[0]) + ", " + std::to_string(c[1]) +
+                                                       ") is listed before with ref " +
                                                        std::to_string(it->second) + ", now with " +
                                                        std::to_string(ref));
     }
@@ -98,9 +99,14 @@ void apply_feature_edges(bodt_mesh* h, int32_t nedges, const int32_t* edges, con
     h->improver.mesh_data_changed();
 }
 
-// The caller's feature edges with their refs, sorted by edge.
+// The caller's feature edges with their refs, by the caller's vertex
+// indices (0-based), sorted by edge.
 std::vector<std::pair<bodt::EdgeKey, int32_t>> sorted_feature_edges(const bodt::TetMesh& mesh) {
-    std::vector<std::pair<bodt::EdgeKey, int32_t>> edges(mesh.feature_edges.begin(), mesh.feature_edges.end());
+    std::vector<std::pair<bodt::EdgeKey, int32_t>> edges;
+    edges.reserve(mesh.feature_edges.size());
+    for (const auto& [k, ref] : mesh.feature_edges)
+        edges.push_back(
+            {bodt::edge_key(mesh.caller_vertex(bodt::edge_first(k)), mesh.caller_vertex(bodt::edge_second(k))), ref});
     std::sort(edges.begin(), edges.end());
     return edges;
 }
@@ -112,20 +118,19 @@ void apply_face_markers(bodt_mesh* h, int32_t nfaces, const int32_t* triangles, 
     const int base = h->index_base;
     decltype(h->mesh.face_markers) fresh;
     for (int32_t f = 0; f < nfaces; ++f) {
-        int32_t v[3];
+        int32_t c[3], v[3];  // the caller's indices (for messages) and the internal ones
         for (int k = 0; k < 3; ++k) {
-            v[k] = triangles[3 * static_cast<size_t>(f) + k];
-            bodt::check_vertex_index(v[k], mesh.num_vertices(), base, "triangle", f);
-            v[k] -= base;
+            c[k] = triangles[3 * static_cast<size_t>(f) + k];
+            bodt::check_vertex_index(c[k], mesh.num_vertices(), base, "triangle", f);
+            v[k] = mesh.internal_vertex(c[k] - base);
         }
         if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
             throw Error(BODT_ERR_INVALID_ARGUMENT, "triangle " + std::to_string(f + base) + " repeats a vertex");
         const auto key = bodt::FaceKey::of(v[0], v[1], v[2]);
         if (!is_mesh_face(mesh, key))
             throw Error(BODT_ERR_INVALID_ARGUMENT, "triangle " + std::to_string(f + base) + " (" +
-                                                       std::to_string(v[0] + base) + ", " +
-                                                       std::to_string(v[1] + base) + ", " +
-                                                       std::to_string(v[2] + base) + ") is not a face of the mesh");
+                                                       std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " +
+                                                       std::to_string(c[2]) + ") is not a face of the mesh");
         if (!fresh.emplace(key, markers ? markers[f] : 1).second)
             throw Error(BODT_ERR_INVALID_ARGUMENT, "triangle " + std::to_string(f + base) + " is listed twice");
     }
@@ -142,7 +147,7 @@ void apply_vertex_flag(bodt_mesh* h, int32_t n, const int32_t* vertices, bodt::V
     bodt::TetMesh& mesh = h->mesh;
     for (int32_t k = 0; k < n; ++k) bodt::check_vertex_index(vertices[k], mesh.num_vertices(), h->index_base, what, k);
     for (uint8_t& f : mesh.vflags) f &= static_cast<uint8_t>(~flag);
-    for (int32_t k = 0; k < n; ++k) mesh.vflags[vertices[k] - h->index_base] |= flag;
+    for (int32_t k = 0; k < n; ++k) mesh.vflags[mesh.internal_vertex(vertices[k] - h->index_base)] |= flag;
     h->improver.mesh_data_changed();
 }
 
@@ -162,14 +167,15 @@ void apply_vertex_refs(bodt_mesh* h, const int32_t* refs) {
     if (!mesh.new_parents.empty())
         throw Error(BODT_ERR_WRONG_STATE,
                     "vertex refs can be set only before a step made vertices (theirs follow from their parents)");
-    mesh.input_vertex_refs.assign(refs, refs + mesh.num_vertices());
+    mesh.input_vertex_refs.resize(mesh.points.size());
+    for (int32_t v = 0; v < mesh.num_vertices(); ++v) mesh.input_vertex_refs[v] = refs[mesh.caller_vertex(v)];
 }
 
 void get_vertex_flag(const bodt_mesh* h, int32_t* out, size_t capacity, bodt::VertexFlag flag, const char* what) {
     if (!out) throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(what) + " is NULL");
-    const auto& flags = h->mesh.vflags;
-    require_capacity(capacity, flags.size(), what);
-    for (size_t v = 0; v < flags.size(); ++v) out[v] = (flags[v] & flag) ? 1 : 0;
+    const bodt::TetMesh& mesh = h->mesh;
+    require_capacity(capacity, mesh.vflags.size(), what);
+    for (int32_t v = 0; v < mesh.num_vertices(); ++v) out[mesh.caller_vertex(v)] = (mesh.vflags[v] & flag) ? 1 : 0;
 }
 
 void fill_step_report(const bodt::StepReport& r, bodt_step_report* out) {
@@ -190,27 +196,36 @@ void fill_step_report(const bodt::StepReport& r, bodt_step_report* out) {
     fill_sized(out, full);
 }
 
+// The mesh as the caller numbers it, for a file.
 bodt::MeshData to_mesh_data(const bodt_mesh* h) {
     const bodt::TetMesh& mesh = h->mesh;
     bodt::MeshData d;
-    d.xyz.reserve(mesh.points.size() * 3);
-    for (const bodt::Vec3& p : mesh.points) d.xyz.insert(d.xyz.end(), {p.x(), p.y(), p.z()});
-    d.tets.reserve(mesh.tets.size() * 4);
-    for (const bodt::Tet& t : mesh.tets) d.tets.insert(d.tets.end(), t.begin(), t.end());
-    d.regions = mesh.regions;
+    d.xyz.resize(mesh.points.size() * 3);
+    for (int32_t v = 0; v < mesh.num_vertices(); ++v)
+        for (int k = 0; k < 3; ++k) d.xyz[3 * static_cast<size_t>(mesh.caller_vertex(v)) + k] = mesh.points[v][k];
+    d.tets.resize(mesh.tets.size() * 4);
+    for (int32_t t = 0; t < mesh.num_tets(); ++t)
+        for (int k = 0; k < 4; ++k)
+            d.tets[4 * static_cast<size_t>(mesh.caller_tet(t)) + k] = mesh.caller_vertex(mesh.tets[t][k]);
+    d.regions.resize(mesh.regions.size());
+    to_caller_tets(mesh, mesh.regions, d.regions.data());
     for (const bodt::SurfaceFace& f : mesh.surface_faces()) {
-        d.triangles.insert(d.triangles.end(), f.v.begin(), f.v.end());
+        for (const int32_t v : f.v) d.triangles.push_back(mesh.caller_vertex(v));
         d.tri_markers.push_back(f.marker);
     }
-    for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
-        if (mesh.vflags[v] & bodt::kFixed) d.fixed.push_back(v);
-        if (mesh.vflags[v] & bodt::kCorner) d.corners.push_back(v);
+    for (int32_t c = 0; c < mesh.num_vertices(); ++c) {
+        const uint8_t flags = mesh.vflags[mesh.internal_vertex(c)];
+        if (flags & bodt::kFixed) d.fixed.push_back(c);
+        if (flags & bodt::kCorner) d.corners.push_back(c);
     }
     for (const auto& [k, ref] : sorted_feature_edges(mesh)) {
         d.feature_edges.insert(d.feature_edges.end(), {bodt::edge_first(k), bodt::edge_second(k)});
         d.edge_refs.push_back(ref);
     }
-    if (!mesh.input_vertex_refs.empty()) d.vertex_refs = mesh.vertex_refs();
+    if (!mesh.input_vertex_refs.empty()) {
+        d.vertex_refs.resize(mesh.points.size());
+        to_caller_vertices(mesh, mesh.vertex_refs(), d.vertex_refs.data());
+    }
     return d;
 }
 
@@ -222,9 +237,11 @@ void add_quality_fields(const bodt::TetMesh& mesh, bodt::MeshData& data) {
         {"max_dihedral", bodt::TetMeasure::MaxDihedral},
         {"stretch", bodt::TetMeasure::Stretch},
         {"volume", bodt::TetMeasure::Volume}};
+    std::vector<double> values;
     for (const auto& [name, measure] : fields) {
-        data.tet_fields.push_back({name, {}});
-        bodt::tet_measures(mesh, measure, data.tet_fields.back().values);
+        bodt::tet_measures(mesh, measure, values);
+        data.tet_fields.push_back({name, std::vector<double>(values.size())});
+        to_caller_tets(mesh, values, data.tet_fields.back().values.data());
     }
 }
 
@@ -361,22 +378,23 @@ int bodt_mesh_get_counts(const bodt_mesh* mesh, int32_t* nverts, int32_t* ntets,
 int bodt_mesh_get_vertices(const bodt_mesh* mesh, double* xyz, size_t capacity) {
     return with_mesh(mesh, [&] {
         require(xyz != nullptr, "xyz is NULL");
-        const auto& pts = mesh->mesh.points;
-        require_capacity(capacity, 3 * pts.size(), "xyz");
-        for (size_t v = 0; v < pts.size(); ++v)
-            for (int k = 0; k < 3; ++k) xyz[3 * v + k] = pts[v][k];
+        const bodt::TetMesh& m = mesh->mesh;
+        require_capacity(capacity, 3 * m.points.size(), "xyz");
+        for (int32_t v = 0; v < m.num_vertices(); ++v)
+            for (int k = 0; k < 3; ++k) xyz[3 * static_cast<size_t>(m.caller_vertex(v)) + k] = m.points[v][k];
     });
 }
 
 int bodt_mesh_get_tets(const bodt_mesh* mesh, int32_t* tets, size_t capacity) {
     return with_mesh(mesh, [&] {
         require(tets != nullptr, "tets is NULL");
-        const auto& all = mesh->mesh.tets;
-        require_capacity(capacity, 4 * all.size(), "tets");
-        for (size_t t = 0; t < all.size(); ++t) {
-            bodt::Tet q = all[t];
+        const bodt::TetMesh& m = mesh->mesh;
+        require_capacity(capacity, 4 * m.tets.size(), "tets");
+        for (int32_t t = 0; t < m.num_tets(); ++t) {
+            bodt::Tet q = m.tets[t];
             if (mesh->flipped) std::swap(q[2], q[3]);
-            for (int k = 0; k < 4; ++k) tets[4 * t + k] = q[k] + mesh->index_base;
+            int32_t* out = tets + 4 * static_cast<size_t>(m.caller_tet(t));
+            for (int k = 0; k < 4; ++k) out[k] = m.caller_vertex(q[k]) + mesh->index_base;
         }
     });
 }
@@ -386,7 +404,7 @@ int bodt_mesh_get_regions(const bodt_mesh* mesh, int32_t* region_ids, size_t cap
         require(region_ids != nullptr, "region_ids is NULL");
         const auto& r = mesh->mesh.regions;
         require_capacity(capacity, r.size(), "region_ids");
-        std::copy(r.begin(), r.end(), region_ids);
+        to_caller_tets(mesh->mesh, r, region_ids);
     });
 }
 
@@ -396,7 +414,8 @@ int bodt_mesh_get_boundary_faces(const bodt_mesh* mesh, int32_t* triangles, int3
         require_capacity(capacity, faces.size(), "boundary faces");
         for (size_t f = 0; f < faces.size(); ++f) {
             if (triangles)
-                for (int k = 0; k < 3; ++k) triangles[3 * f + k] = faces[f].v[k] + mesh->index_base;
+                for (int k = 0; k < 3; ++k)
+                    triangles[3 * f + k] = mesh->mesh.caller_vertex(faces[f].v[k]) + mesh->index_base;
             if (markers) markers[f] = faces[f].marker;
         }
     });
@@ -414,8 +433,7 @@ int bodt_mesh_get_vertex_refs(const bodt_mesh* mesh, int32_t* refs, size_t capac
     return with_mesh(mesh, [&] {
         require(refs != nullptr, "refs is NULL");
         require_capacity(capacity, mesh->mesh.points.size(), "refs");
-        const std::vector<int32_t> all = mesh->mesh.vertex_refs();
-        std::copy(all.begin(), all.end(), refs);
+        to_caller_vertices(mesh->mesh, mesh->mesh.vertex_refs(), refs);
     });
 }
 
@@ -451,7 +469,8 @@ int bodt_mesh_get_vertex_classes(const bodt_mesh* mesh, int32_t* classes, size_t
         require(classes != nullptr, "classes is NULL");
         require_capacity(capacity, mesh->mesh.points.size(), "classes");
         const bodt::VertexClasses& c = mesh->improver.classes(mesh->mesh, mesh->surfaces);
-        for (size_t v = 0; v < c.cls.size(); ++v) classes[v] = static_cast<int32_t>(c.cls[v]);
+        for (int32_t v = 0; v < mesh->mesh.num_vertices(); ++v)
+            classes[mesh->mesh.caller_vertex(v)] = static_cast<int32_t>(c.cls[v]);
     });
 }
 
@@ -477,15 +496,15 @@ int bodt_mesh_get_vertex_parents(const bodt_mesh* mesh, int64_t* offsets, size_t
         require_capacity(capacity, total, "parents");
         const int base = mesh->index_base;
         size_t k = 0;
-        for (int32_t v = 0; v < m.num_vertices(); ++v) {
-            offsets[v] = static_cast<int64_t>(k);
-            if (v < input) {
-                parents[k] = v + base;
+        for (int32_t c = 0; c < m.num_vertices(); ++c) {  // by the caller's index: made vertices are the last
+            offsets[c] = static_cast<int64_t>(k);
+            if (c < input) {
+                parents[k] = c + base;
                 weights[k++] = 1.0;
                 continue;
             }
-            for (const bodt::Parent& p : m.new_parents[v - input]) {
-                parents[k] = p.vertex + base;
+            for (const bodt::Parent& p : m.new_parents[c - input]) {
+                parents[k] = m.caller_vertex(p.vertex) + base;
                 weights[k++] = p.weight;
             }
         }
@@ -498,8 +517,7 @@ int bodt_mesh_get_tet_origins(const bodt_mesh* mesh, int32_t* origins, size_t ca
         require(origins != nullptr, "origins is NULL");
         const bodt::TetMesh& m = mesh->mesh;
         require_capacity(capacity, m.tets.size(), "origins");
-        for (int32_t t = 0; t < m.num_tets(); ++t)
-            origins[t] = (m.tet_origin.empty() ? t : m.tet_origin[t]) + mesh->index_base;
+        for (int32_t t = 0; t < m.num_tets(); ++t) origins[m.caller_tet(t)] = m.caller_origin(t) + mesh->index_base;
     });
 }
 
@@ -545,7 +563,7 @@ int bodt_mesh_tet_quality(const bodt_mesh* mesh, int measure, double* values, si
         }
         std::vector<double> out;
         bodt::tet_measures(mesh->mesh, m, out);
-        std::copy(out.begin(), out.end(), values);
+        to_caller_tets(mesh->mesh, out, values);
     });
 }
 

@@ -44,7 +44,8 @@ int bodt_mesh_get_geometry_classes(const bodt_mesh* mesh, int32_t* classes, size
         require(classes != nullptr, "classes is NULL");
         require_capacity(capacity, mesh->mesh.points.size(), "classes");
         const bodt::GeometryModel& g = mesh->improver.geometry(mesh->mesh);
-        for (int32_t v = 0; v < mesh->mesh.num_vertices(); ++v) classes[v] = geometry_class(g.vertex_class(v));
+        for (int32_t v = 0; v < mesh->mesh.num_vertices(); ++v)
+            classes[mesh->mesh.caller_vertex(v)] = geometry_class(g.vertex_class(v));
     });
 }
 

@@ -1,6 +1,8 @@
 // What every C API file shares: the handle behind the opaque bodt_mesh,
 // and the wrappers that check arguments and turn every exception into a
-// status code and a message.
+// status code and a message.  The core numbers vertices and tets in its own
+// (curve) order; every index crosses the API through TetMesh::caller_vertex,
+// internal_vertex and caller_tet, so the caller sees only theirs.
 #pragma once
 
 #include "bodt.h"
@@ -76,6 +78,20 @@ inline void require_capacity(size_t capacity, size_t needed, const char* what) {
     if (capacity < needed)
         throw Error(BODT_ERR_INVALID_ARGUMENT, std::string(what) + " needs capacity " + std::to_string(needed) +
                                                    ", got " + std::to_string(capacity));
+}
+
+// Per-tet values in the caller's tet order (TetMesh::caller_tet): out must
+// hold values.size() elements.
+template <class T>
+void to_caller_tets(const bodt::TetMesh& mesh, const std::vector<T>& values, T* out) {
+    for (int32_t t = 0; t < mesh.num_tets(); ++t) out[mesh.caller_tet(t)] = values[static_cast<size_t>(t)];
+}
+
+// Per-vertex values in the caller's vertex order: out must hold
+// values.size() elements.
+template <class T>
+void to_caller_vertices(const bodt::TetMesh& mesh, const std::vector<T>& values, T* out) {
+    for (int32_t v = 0; v < mesh.num_vertices(); ++v) out[mesh.caller_vertex(v)] = values[static_cast<size_t>(v)];
 }
 
 // Copies `full` into a caller struct of `size` bytes whose first member is

@@ -73,17 +73,22 @@ std::vector<char> fin_vertices(const TetMesh& mesh) {
 
 void tensor_voting(const TetMesh& mesh, const RegionSurfaces& surfaces, int32_t v, std::vector<FaceKey>& faces,
                    std::vector<int32_t>& ring, Vec3& mu, Eigen::Matrix3d& e) {
+    // The faces by the caller's vertex indices, so that the sum (and each
+    // face's normal) does not depend on the internal order.
     faces.clear();
+    const auto caller = [&mesh](int32_t u) { return mesh.caller_vertex(u); };
     for (const int32_t* k = surfaces.begin(v); k != surfaces.end(v); ++k) {
         surfaces.surface(*k).one_ring(v, ring);
-        for (size_t i = 0; i < ring.size(); ++i) faces.push_back(FaceKey::of(v, ring[i], ring[(i + 1) % ring.size()]));
+        for (size_t i = 0; i < ring.size(); ++i)
+            faces.push_back(FaceKey::of(caller(v), caller(ring[i]), caller(ring[(i + 1) % ring.size()])));
     }
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
     Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
     for (const FaceKey& f : faces) {
-        const Vec3& a = mesh.points[f.v[0]];
-        const Vec3 c = (mesh.points[f.v[1]] - a).cross(mesh.points[f.v[2]] - a);
+        const Vec3& a = mesh.points[mesh.internal_vertex(f.v[0])];
+        const Vec3& b = mesh.points[mesh.internal_vertex(f.v[1])];
+        const Vec3 c = (b - a).cross(mesh.points[mesh.internal_vertex(f.v[2])] - a);
         const double len = c.norm();
         if (len > 0.0) M += c * c.transpose() / (2.0 * len);  // S_i n_i n_i^T, eq. (11)
     }

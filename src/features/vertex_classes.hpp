@@ -49,7 +49,8 @@ VertexClasses classify_vertices(const TetMesh& mesh, const RegionSurfaces& surfa
 
 // The eigen-decomposition of eq. (11) over the distinct surface triangles
 // around v: eigenvalues descending in `mu`, the matching unit eigenvectors
-// as the columns of `e`.  `faces` and `ring` are scratch space.
+// as the columns of `e`.  `faces` (by the caller's vertex indices) and
+// `ring` are scratch space.
 void tensor_voting(const TetMesh& mesh, const RegionSurfaces& surfaces, int32_t v, std::vector<FaceKey>& faces,
                    std::vector<int32_t>& ring, Vec3& mu, Eigen::Matrix3d& e);
 

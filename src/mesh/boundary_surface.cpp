@@ -14,15 +14,23 @@ struct OrientedFace {
     std::array<int32_t, 3> v;
 };
 
+// In the caller's tet order: the surface grows in this order, which decides
+// where each one-ring starts, and sums over rings must not depend on the
+// internal order.
 std::vector<OrientedFace> region_faces(const TetMesh& mesh, int32_t region) {
-    std::vector<OrientedFace> faces;
+    std::vector<std::pair<int64_t, OrientedFace>> keyed;  // 4 * caller's tet + face
     for (int32_t t = 0; t < mesh.num_tets(); ++t) {
         if (mesh.regions[t] != region) continue;
         for (int i = 0; i < 4; ++i) {
             const int32_t s = mesh.neighbors[t][i];
-            if (s < 0 || mesh.regions[s] != region) faces.push_back({mesh.outward_face(t, i)});
+            if (s < 0 || mesh.regions[s] != region)
+                keyed.push_back({4 * static_cast<int64_t>(mesh.caller_tet(t)) + i, {mesh.outward_face(t, i)}});
         }
     }
+    std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<OrientedFace> faces;
+    faces.reserve(keyed.size());
+    for (const auto& k : keyed) faces.push_back(k.second);
     return faces;
 }
 

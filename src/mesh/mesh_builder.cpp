@@ -2,6 +2,7 @@
 
 #include "bodt.h"
 #include "common/error.hpp"
+#include "mesh/curve_order.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -41,7 +42,7 @@ void check_arguments(const MeshArrays& in) {
         throw Error(BODT_ERR_INVALID_ARGUMENT, "ntets must be positive, got " + std::to_string(in.ntets));
     if (!in.xyz) throw Error(BODT_ERR_INVALID_ARGUMENT, "xyz is NULL");
     if (!in.tets) throw Error(BODT_ERR_INVALID_ARGUMENT, "tets is NULL");
-    if (in.flags & ~static_cast<uint32_t>(BODT_CREATE_ACCEPT_INVERTED))
+    if (in.flags & ~static_cast<uint32_t>(BODT_CREATE_ACCEPT_INVERTED | BODT_CREATE_KEEP_ORDER))
         throw Error(BODT_ERR_INVALID_ARGUMENT, "unknown create flags " + std::to_string(in.flags));
 }
 
@@ -151,6 +152,22 @@ void check_sides(const TetMesh& mesh, int base) {
     }
 }
 
+// The mesh as `in` gives it (already checked), the caller's numbering
+// being `caller`: the topology is built in it.
+BuiltMesh build_as_given(const MeshArrays& in, CallerNumbering caller) {
+    BuiltMesh out;
+    out.mesh.caller = std::move(caller);
+    copy_points(in, out.mesh);
+    copy_tets(in, out.mesh);
+    normalise_orientation(in, out);
+    out.mesh.regions.assign(out.mesh.tets.size(), 0);
+    out.mesh.build_topology(in.index_base);
+    if (out.num_inverted > 0) out.mesh.find_reversed_tets(in.index_base);
+    check_sides(out.mesh, in.index_base);
+    out.surfaces.build(out.mesh, in.index_base, BoundarySurface::Strictness::Strict);  // the domain boundary
+    return out;
+}
+
 }  // namespace
 
 void check_vertex_index(int32_t value, int32_t nverts, int base, const char* what, int64_t item) {
@@ -164,16 +181,27 @@ void check_vertex_index(int32_t value, int32_t nverts, int base, const char* wha
 
 BuiltMesh build_mesh(const MeshArrays& in) {
     check_arguments(in);
-    BuiltMesh out;
-    copy_points(in, out.mesh);
-    copy_tets(in, out.mesh);
-    normalise_orientation(in, out);
-    out.mesh.regions.assign(out.mesh.tets.size(), 0);
-    out.mesh.build_topology(in.index_base);
-    if (out.num_inverted > 0) out.mesh.find_reversed_tets(in.index_base);
-    check_sides(out.mesh, in.index_base);
-    out.surfaces.build(out.mesh, in.index_base, BoundarySurface::Strictness::Strict);  // the domain boundary
-    return out;
+    return build_as_given(in, {});
+}
+
+BuiltMesh build_mesh_in_curve_order(const MeshArrays& in) {
+    check_arguments(in);
+    CallerNumbering numbering = curve_order(in.nverts, in.xyz, in.ntets, in.tets, in.index_base);
+    if (numbering.is_identity()) return build_as_given(in, {});
+    try {
+        std::vector<double> xyz;
+        std::vector<int32_t> tets;
+        renumber_input(numbering, in.xyz, in.tets, in.index_base, xyz, tets);
+        MeshArrays renumbered = in;
+        renumbered.xyz = xyz.data();
+        renumbered.tets = tets.data();
+        return build_as_given(renumbered, std::move(numbering));
+    } catch (const Error&) {
+        // Refused: built again in the caller's order, so that the message
+        // names their vertices and tets (and, should a check depend on the
+        // order, the mesh is kept as given).
+    }
+    return build_as_given(in, {});
 }
 
 }  // namespace bodt

@@ -26,7 +26,12 @@ struct BuiltMesh {
     int32_t num_inverted = 0;    // accepted inverted tets (with the flag)
 };
 
+// The mesh as given: vertex v and tet t of `in` are the mesh's v and t.
 BuiltMesh build_mesh(const MeshArrays& in);
+// The mesh stored in the curve order of mesh/curve_order.hpp, mesh.caller
+// holding the caller's numbering; messages name the caller's vertices and
+// tets all the same.
+BuiltMesh build_mesh_in_curve_order(const MeshArrays& in);
 
 // Converts caller-based vertex indices to 0-based ones, checking the range;
 // `what` names the array in messages ("triangle", "fixed vertex").

@@ -36,6 +36,16 @@ void TetMesh::build_incidence() {
         for (int32_t v : tets[t]) vt_tets[fill[v]++] = t;
 }
 
+// Smoothing sums over stars, and its results must not depend on the
+// internal order.
+void TetMesh::order_stars_as_caller() {
+    if (!tet_origin.empty() || caller.tet_to_caller.empty()) return;
+    const std::vector<int32_t>& rank = caller.tet_to_caller;
+    for (int32_t v = 0; v < num_vertices(); ++v)
+        std::sort(vt_tets.begin() + vt_offset[v], vt_tets.begin() + vt_offset[v + 1],
+                  [&rank](int32_t a, int32_t b) { return rank[a] < rank[b]; });
+}
+
 // Faces are matched through the incidence of one of their vertices (the one
 // in the fewest tets): for face i of tet t, every other tet around that
 // vertex that holds the face is its neighbour.  Each tet finds its own
@@ -113,11 +123,12 @@ bool TetMesh::is_surface_face(int32_t t, int i) const {
 }
 
 // An interior surface face is listed once, from the side it points out of:
-// the tet with the smaller region id, or the smaller index in equal regions.
+// the tet with the smaller region id, or the smaller (caller's) index in
+// equal regions.
 bool TetMesh::is_listed_face(int32_t t, int i) const {
     if (!is_surface_face(t, i)) return false;
     const int32_t s = neighbors[t][i];
-    return s < 0 || regions[t] < regions[s] || (regions[t] == regions[s] && t < s);
+    return s < 0 || regions[t] < regions[s] || (regions[t] == regions[s] && caller_tet(t) < caller_tet(s));
 }
 
 void TetMesh::update_vertex_flags() {
@@ -138,7 +149,8 @@ void TetMesh::update_vertex_flags() {
 
 void TetMesh::build_topology(int base, int threads) {
     build_incidence();
-    build_neighbors(base, threads);
+    build_neighbors(base, threads);  // faster on stars in memory order: ordered after
+    order_stars_as_caller();
     update_vertex_flags();
 }
 
@@ -187,18 +199,20 @@ void TetMesh::find_reversed_tets(int base) {
 }
 
 std::vector<SurfaceFace> TetMesh::surface_faces() const {
-    std::vector<SurfaceFace> out;
+    std::vector<std::pair<FaceKey, SurfaceFace>> keyed;  // sorted by the caller's vertex indices
     for (int32_t t = 0; t < num_tets(); ++t) {
         for (int i = 0; i < 4; ++i) {
             if (!is_listed_face(t, i)) continue;
             const auto f = outward_face(t, i);
             const auto it = face_markers.find(FaceKey::of(f[0], f[1], f[2]));
-            out.push_back({f, it == face_markers.end() ? 0 : it->second});
+            keyed.push_back({FaceKey::of(caller_vertex(f[0]), caller_vertex(f[1]), caller_vertex(f[2])),
+                             {f, it == face_markers.end() ? 0 : it->second}});
         }
     }
-    std::sort(out.begin(), out.end(), [](const SurfaceFace& a, const SurfaceFace& b) {
-        return FaceKey::of(a.v[0], a.v[1], a.v[2]) < FaceKey::of(b.v[0], b.v[1], b.v[2]);
-    });
+    std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<SurfaceFace> out;
+    out.reserve(keyed.size());
+    for (const auto& k : keyed) out.push_back(k.second);
     return out;
 }
 

@@ -2,9 +2,15 @@
 // points and tets, vertex->tet incidence in CSR form, tet->tet face
 // neighbours, per-vertex flags and face markers.  Every tet is stored
 // positively oriented (an accepted inverted tet excepted); the caller's
-// convention is restored at the C API.
+// convention is restored at the C API.  Vertices and tets are numbered in
+// the internal (curve) order; `caller` holds the caller's numbering, which
+// the C API gives back.  Smoothing follows the caller's order wherever an
+// order changes its results (colours, stars, rings, sums), so it gives the
+// same bits in any internal order; the connectivity passes and the phased
+// mode's serial sweep visit vertices and tets in the internal order.
 #pragma once
 
+#include "mesh/curve_order.hpp"
 #include "quality/tet_geometry.hpp"
 
 #include <array>
@@ -76,7 +82,10 @@ public:
     std::vector<Tet> tets;
     std::vector<int32_t> regions;            // one per tet
     std::vector<Tet> neighbors;              // across face i of tet t; -1 on the boundary
-    std::vector<int32_t> vt_offset, vt_tets; // CSR: tets of vertex v are vt_tets[vt_offset[v] .. vt_offset[v+1])
+    // CSR: tets of vertex v are vt_tets[vt_offset[v] .. vt_offset[v+1]), in
+    // the caller's order (caller_tet), so sums over a star do not depend on
+    // the internal one.
+    std::vector<int32_t> vt_offset, vt_tets;
     std::vector<uint8_t> vflags;
     std::unordered_map<FaceKey, int32_t, FaceKeyHash> face_markers;
     EdgeRefs feature_edges;  // given by the caller (or a file's edges), with their refs
@@ -93,10 +102,23 @@ public:
     // last new_parents.size() ones; input vertices keep their index.
     std::vector<int32_t> tet_origin;
     std::vector<Parents> new_parents;
+    // The caller's numbering of the input vertices and tets.
+    CallerNumbering caller;
 
     int32_t num_vertices() const { return static_cast<int32_t>(points.size()); }
     int32_t num_tets() const { return static_cast<int32_t>(tets.size()); }
     int32_t num_input_vertices() const { return num_vertices() - static_cast<int32_t>(new_parents.size()); }
+
+    // The caller's index of vertex v, and the inverse.
+    int32_t caller_vertex(int32_t v) const { return caller.caller_vertex(v); }
+    int32_t internal_vertex(int32_t c) const { return caller.internal_vertex(c); }
+    // The caller's index of tet t: its input index while the connectivity
+    // is the input's; after a change the caller gets the internal order.
+    int32_t caller_tet(int32_t t) const { return tet_origin.empty() ? caller.caller_input_tet(t) : t; }
+    // The caller's index of the input tet that tet t came from.
+    int32_t caller_origin(int32_t t) const {
+        return caller.caller_input_tet(tet_origin.empty() ? t : tet_origin[t]);
+    }
 
     // Every vertex's ref: an input vertex's own; a made vertex's is the one
     // shared by those of its parents that lie where it lies (on the surface
@@ -135,7 +157,8 @@ public:
     // Throws Error(BODT_ERR_BAD_MESH) if the mesh cannot be oriented.
     void find_reversed_tets(int base);
 
-    // The faces the caller sees, in the documented order and orientation.
+    // The faces the caller sees, in the documented order and orientation
+    // (both by the caller's numbering; the vertices are internal).
     std::vector<SurfaceFace> surface_faces() const;
     int32_t count_surface_faces() const;
 
@@ -148,6 +171,7 @@ public:
 private:
     void build_incidence();
     void build_neighbors(int base, int threads);
+    void order_stars_as_caller();
     bool is_listed_face(int32_t t, int i) const;
 };
 

@@ -102,7 +102,14 @@ void Improver::set_reference(const TetMesh& reference, const TetMesh& mesh) {
                                                    " vertices, but this mesh was made with " +
                                                    std::to_string(mesh.num_input_vertices()) +
                                                    ": a reference must have the same vertices, numbered alike");
-    const std::vector<double> ref_density = vertex_density(reference);
+    // The caller numbers both meshes alike, each may store its own order:
+    // every per-vertex value of the reference goes to this mesh's vertex.
+    const int32_t n = reference.num_vertices();
+    std::vector<int32_t> to_mesh(static_cast<size_t>(n));
+    for (int32_t r = 0; r < n; ++r) to_mesh[r] = mesh.internal_vertex(reference.caller_vertex(r));
+    const std::vector<double> ref_by_reference = vertex_density(reference);
+    std::vector<double> ref_density(ref_by_reference.size());
+    for (int32_t r = 0; r < n; ++r) ref_density[to_mesh[r]] = ref_by_reference[r];
     std::vector<double> density(ref_density);
     for (const Parents& parents : mesh.new_parents) {
         double value = 0.0;
@@ -113,14 +120,17 @@ void Improver::set_reference(const TetMesh& reference, const TetMesh& mesh) {
 
     // A reference cylinder's own error (as extracted) is the acceptable one.
     const GeometryModel ref = GeometryModel::extract(reference, geometry_settings(params_));
-    std::vector<double> acceptable(static_cast<size_t>(reference.num_vertices()), 0.0);
-    for (int32_t v = 0; v < reference.num_vertices(); ++v)
-        if (ref.vertex_class(v) == VertexClass::Surface && ref.entity(v) >= 0)
-            acceptable[v] = ref.regions()[ref.entity(v)].own_error;
+    std::vector<double> acceptable(static_cast<size_t>(n), 0.0);
+    std::vector<Vec3> points(static_cast<size_t>(n));
+    for (int32_t r = 0; r < n; ++r) {
+        if (ref.vertex_class(r) == VertexClass::Surface && ref.entity(r) >= 0)
+            acceptable[to_mesh[r]] = ref.regions()[ref.entity(r)].own_error;
+        points[to_mesh[r]] = reference.points[r];
+    }
 
     density_ = std::move(grid);
     vertex_acceptable_ = std::move(acceptable);
-    reference_points_ = reference.points;
+    reference_points_ = std::move(points);
     geometry_valid_ = false;  // extracted again with the reference's sharp edges
     classes_valid_ = false;
 }

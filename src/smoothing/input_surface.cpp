@@ -81,9 +81,9 @@ InputSurface::SidedFaces InputSurface::sided_faces(const TetMesh& mesh) {
             // an interface face already seen from the other side.
             if (s >= 0 && (mesh.regions[s] == mesh.regions[t] || s < t)) continue;
             const Tet& q = mesh.tets[t];
+            const auto caller = [&mesh, &q, i](int k) { return mesh.caller_vertex(q[kFaceVertex[i][k]]); };
             const int64_t a = mesh.regions[t], b = s < 0 ? kOutside : mesh.regions[s];
-            found.push_back({FaceKey::of(q[kFaceVertex[i][0]], q[kFaceVertex[i][1]], q[kFaceVertex[i][2]]),
-                             {std::min(a, b), std::max(a, b)}});
+            found.push_back({FaceKey::of(caller(0), caller(1), caller(2)), {std::min(a, b), std::max(a, b)}});
         }
     // The pairs of sides numbered in order.
     std::vector<Sides> pairs;
@@ -101,7 +101,10 @@ InputSurface::SidedFaces InputSurface::sided_faces(const TetMesh& mesh) {
 
 void InputSurface::update(const TetMesh& mesh, const VertexClasses& classes) {
     SidedFaces faces = sided_faces(mesh);
-    std::vector<EdgeKey> features(classes.feature_edges.begin(), classes.feature_edges.end());
+    std::vector<EdgeKey> features;
+    features.reserve(classes.feature_edges.size());
+    for (const EdgeKey e : classes.feature_edges)
+        features.push_back(edge_key(mesh.caller_vertex(edge_first(e)), mesh.caller_vertex(edge_second(e))));
     std::sort(features.begin(), features.end());
     if (captured_ && faces == faces_ && features == feature_edges_) return;
     faces_ = std::move(faces);
@@ -134,7 +137,8 @@ void InputSurface::capture_patches(const TetMesh& mesh) {
     TreeBuilder builder(mesh.num_vertices());
     for (int32_t k = 0; k < static_cast<int32_t>(members.size()); ++k) {
         for (int32_t f : members[k]) {
-            const auto& v = faces_[f].first.v;
+            const auto& c = faces_[f].first.v;
+            const int32_t v[3] = {mesh.internal_vertex(c[0]), mesh.internal_vertex(c[1]), mesh.internal_vertex(c[2])};
             builder.add(mesh, v[0], v[1], v[2]);
             for (int32_t u : v) patch_of_[u] = patch_of_[u] == -1 || patch_of_[u] == k ? k : -2;
         }
@@ -146,8 +150,9 @@ void InputSurface::capture_lines(const TetMesh& mesh, const VertexClasses& class
     line_of_.assign(mesh.points.size(), -1);
     lines_.clear();
     // Feature edges joined through the feature-line vertices between them.
-    const auto index = [this](int32_t a, int32_t b) {
-        return static_cast<int32_t>(std::lower_bound(feature_edges_.begin(), feature_edges_.end(), edge_key(a, b)) -
+    const auto index = [this, &mesh](int32_t a, int32_t b) {
+        const EdgeKey e = edge_key(mesh.caller_vertex(a), mesh.caller_vertex(b));
+        return static_cast<int32_t>(std::lower_bound(feature_edges_.begin(), feature_edges_.end(), e) -
                                     feature_edges_.begin());
     };
     std::vector<int32_t> parent(feature_edges_.size());
@@ -163,7 +168,8 @@ void InputSurface::capture_lines(const TetMesh& mesh, const VertexClasses& class
     TreeBuilder builder(nv);
     for (int32_t k = 0; k < static_cast<int32_t>(members.size()); ++k) {
         for (int32_t e : members[k]) {
-            const int32_t a = edge_first(feature_edges_[e]), b = edge_second(feature_edges_[e]);
+            const int32_t a = mesh.internal_vertex(edge_first(feature_edges_[e]));
+            const int32_t b = mesh.internal_vertex(edge_second(feature_edges_[e]));
             builder.add(mesh, a, b, b);
             line_of_edge[e] = k;
         }

@@ -14,6 +14,10 @@
 // the same sides) and the same feature edges; it is taken again when these
 // change (new regions, markers or feature edges from the caller, or a
 // connectivity change that renumbers the surface).
+//
+// Faces and edges are held by the caller's vertex indices (TetMesh::caller)
+// and the trees built in that order, so that projections do not depend on
+// the internal order.
 #pragma once
 
 #include "features/vertex_classes.hpp"
@@ -40,8 +44,9 @@ public:
     Vec3 project(int32_t v, VertexClass c, const Vec3& p) const;
 
 private:
-    // Each surface face with the index of its pair of sides, sorted: what
-    // decides whether the capture still holds, with the feature edges.
+    // Each surface face (by the caller's indices) with the index of its
+    // pair of sides, sorted: what decides whether the capture still holds,
+    // with the feature edges.
     using SidedFaces = std::vector<std::pair<FaceKey, int32_t>>;
     static SidedFaces sided_faces(const TetMesh& mesh);
     void capture_patches(const TetMesh& mesh);
@@ -49,7 +54,7 @@ private:
 
     bool captured_ = false;
     SidedFaces faces_;
-    std::vector<EdgeKey> feature_edges_;  // sorted
+    std::vector<EdgeKey> feature_edges_;  // by the caller's indices, sorted
     std::vector<SurfaceBvh> patches_;
     std::vector<SurfaceBvh> lines_;  // a segment ab as the triangle (a, b, b)
     std::vector<int32_t> patch_of_;  // per vertex: its patch, -1 none, -2 several

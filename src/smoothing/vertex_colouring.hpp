@@ -13,13 +13,14 @@ namespace bodt {
 
 struct VertexColouring {
     // The vertices of colour c are order[offset[c] .. offset[c + 1]), in
-    // ascending index.  Unused vertices get no colour.
+    // ascending (internal) index.  Unused vertices get no colour.
     std::vector<int32_t> offset, order;
     int32_t colours() const { return static_cast<int32_t>(offset.size()) - 1; }
 };
 
-// Each vertex, in index order, takes the smallest colour none of its
-// neighbours (the other vertices of its tets) has taken yet.
+// Each vertex, in the caller's index order (TetMesh::caller), takes the
+// smallest colour none of its neighbours (the other vertices of its tets)
+// has taken yet: the colours are the same in any internal order.
 VertexColouring colour_vertices(const TetMesh& mesh);
 
 }  // namespace bodt

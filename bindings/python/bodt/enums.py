@@ -42,6 +42,7 @@ class CreateFlag(IntFlag):
     DEFAULT = 0
     ACCEPT_INVERTED = 1
     ONE_BASED = 2
+    KEEP_ORDER = 4
 
 
 class VertexClass(IntEnum):
