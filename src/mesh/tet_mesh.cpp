@@ -2,6 +2,7 @@
 
 #include "bodt.h"
 #include "common/error.hpp"
+#include "mesh/vertex_colouring.hpp"
 
 #include <algorithm>
 #include <optional>
@@ -148,6 +149,7 @@ void TetMesh::update_vertex_flags() {
 }
 
 void TetMesh::build_topology(int base, int threads) {
+    colouring_.reset();
     build_incidence();
     build_neighbors(base, threads);  // faster on stars in memory order: ordered after
     order_stars_as_caller();
@@ -196,6 +198,11 @@ void TetMesh::find_reversed_tets(int base) {
         for (int32_t t : part) parity[t] = static_cast<int8_t>(parity[t] ^ (majority_flipped ? 1 : 0));
     }
     reversed.assign(parity.begin(), parity.end());
+}
+
+const VertexColouring& TetMesh::colouring() const {
+    if (!colouring_) colouring_ = std::make_shared<const VertexColouring>(colour_vertices(*this));
+    return *colouring_;
 }
 
 std::vector<SurfaceFace> TetMesh::surface_faces() const {

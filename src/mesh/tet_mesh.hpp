@@ -14,6 +14,7 @@
 #include "quality/tet_geometry.hpp"
 
 #include <array>
+#include <memory>
 #include <cstdint>
 #include <string>
 #include <unordered_map>
@@ -21,6 +22,8 @@
 #include <vector>
 
 namespace bodt {
+
+struct VertexColouring;  // mesh/vertex_colouring.hpp
 
 using Tet = std::array<int32_t, 4>;
 
@@ -143,6 +146,11 @@ public:
     // `base` when the connectivity is not a valid mesh.
     void build_topology(int base, int threads = 1);
 
+    // The colouring of mesh/vertex_colouring.hpp, made when first asked for
+    // and kept until build_topology (a copy of the mesh shares it).  Not to
+    // be called from several threads at once.
+    const VertexColouring& colouring() const;
+
     // Recompute the boundary, interface and unused bits of vflags (the fixed
     // bit is kept), after regions or markers changed.
     void update_vertex_flags();
@@ -173,6 +181,8 @@ private:
     void build_neighbors(int base, int threads);
     void order_stars_as_caller();
     bool is_listed_face(int32_t t, int i) const;
+
+    mutable std::shared_ptr<const VertexColouring> colouring_;  // a cache of the connectivity
 };
 
 }  // namespace bodt

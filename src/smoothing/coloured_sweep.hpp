@@ -4,7 +4,7 @@
 // threads or on how the vertices are shared out.
 #pragma once
 
-#include "smoothing/vertex_colouring.hpp"
+#include "mesh/vertex_colouring.hpp"
 
 #include <algorithm>
 #include <cstddef>

@@ -1,4 +1,4 @@
-#include "smoothing/vertex_colouring.hpp"
+#include "mesh/vertex_colouring.hpp"
 
 namespace bodt {
 
