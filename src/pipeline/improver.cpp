@@ -274,7 +274,7 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
 }
 
 void Improver::sweep(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes, StepReport& report) {
-    shapes = tet_shapes(mesh, sweep_threads(params_.threads, mesh.tets.size()));
+    if (shapes.empty()) shapes = tet_shapes(mesh, sweep_threads(params_.threads, mesh.tets.size()));
     if (mode_ == BODT_MODE_LAPLACE) sweep_laplace(mesh, shapes, report);
     else if (mode_ == BODT_MODE_OPT_WEIGHTED) sweep_opt_weighted(mesh, surfaces, shapes, report);
     else if (mode_ == BODT_MODE_NODT) sweep_nodt(mesh, surfaces, shapes, report);
@@ -295,17 +295,18 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
         saved_geometry = geometry_;
     }
     StepReport report;
-    ShapeCache shapes;  // of every tet: kept up to date by the sweep, made anew after other changes
     try {
         if (mode_ == BODT_MODE_PHASED_ODT) {
+            shapes_ = ShapeCache();
             step_phased(mesh, surfaces, report);
         } else {
-            if (ops() & BODT_OP_SMOOTH) sweep(mesh, surfaces, shapes, report);
-            if (change_topology(mesh, surfaces, report)) shapes = ShapeCache();  // freed, then made anew
+            if (ops() & BODT_OP_SMOOTH) sweep(mesh, surfaces, shapes_, report);
+            if (change_topology(mesh, surfaces, report)) shapes_ = ShapeCache();  // freed, then made anew
         }
         for (const Vec3& p : mesh.points)
             if (!p.allFinite()) throw Error(BODT_ERR_NUMERIC, "a vertex position became non-finite");
     } catch (...) {
+        shapes_ = ShapeCache();
         if (topology) {
             mesh = std::move(saved_mesh);
             surfaces = std::move(saved_surfaces);
@@ -318,8 +319,8 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
         throw;
     }
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
-    if (shapes.empty()) shapes = tet_shapes(mesh, threads);
-    const QualityExtremes q = quality_extremes(shapes, threads);
+    if (shapes_.empty()) shapes_ = tet_shapes(mesh, threads);
+    const QualityExtremes q = quality_extremes(shapes_, threads);
     report.step = ++steps_done_;
     report.min_dihedral = q.min_dihedral;
     report.max_dihedral = q.max_dihedral;

@@ -76,7 +76,7 @@ private:
     GuardSettings guard_settings() const;
     // Smoothing sweeps: Gauss-Seidel colour by colour (coloured_sweep.hpp),
     // on BODT_PARAM_THREADS threads; `shapes` (tet_shapes() of the mesh as
-    // it is) is kept up to date by the moves.
+    // it is, made if empty) is kept up to date by the moves.
     void sweep(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes, StepReport& report);
     void sweep_laplace(TetMesh& mesh, ShapeCache& shapes, StepReport& report) const;
     void sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes, StepReport& report) const;
@@ -93,6 +93,11 @@ private:
     int mode_ = BODT_MODE_BODT;
     Params params_;
     int32_t steps_done_ = 0;
+    // tet_shapes() of the mesh as the last step left it, kept up to date by
+    // the guarded sweeps; emptied by whatever else moves a vertex or changes
+    // the connectivity (the phased mode, topology passes, a rolled-back
+    // step).  Only step() moves the vertices of the handle's mesh.
+    ShapeCache shapes_;
     mutable VertexClasses classes_;  // a cache: computing it changes no result
     mutable bool classes_valid_ = false;
     mutable GeometryModel geometry_;  // carried state in the phased mode, a cache otherwise
