@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The README's results tables from bench/run's JSON lines.
 
-usage: /usr/bin/python3 bench/readme_table.py bench/results/latest.jsonl [bench/results/scale.jsonl]
+usage: /usr/bin/python3 bench/readme_table.py bench/results/latest.jsonl [SCALE.jsonl ...]
 
 From the bench set (the first file; the duplicate `file.*_tetgen-*` copies
 of the generated TetGen meshes are left out): one row per mesh with the min /
@@ -9,9 +9,10 @@ max dihedral angle before and after 20 steps of bodt-smooth, bodt, nodt and
 opt (paper 001's combined method) and after the peers (TetGen's and Gmsh's
 optimisers), the seconds of each, how long bodt's steps took to pass each
 peer's minimum angle, bodt's vertex growth and relative Hausdorff distance.
-From the scale series (the second file): time, updates per second and bytes
-per tet per box, variant and thread count.  Then the targets of both runs
-(for a target measured in both, the second file's).
+From each scale series (the further files, e.g. bench/results/scale.jsonl
+and scale1e7.jsonl): time, updates per second and bytes per tet per box,
+variant and thread count.  Then the targets of all runs (for a target
+measured in several, the last file's).
 """
 import json
 import sys
@@ -118,8 +119,8 @@ def main(paths):
     rows, order, targets = load(paths[0])
     bench_table(rows, order)
     all_targets = [targets]
-    if len(paths) > 1:
-        srows, sorder, stargets = load(paths[1])
+    for path in paths[1:]:
+        srows, sorder, stargets = load(path)
         print()
         scale_table(srows, sorder)
         all_targets.append(stargets)
@@ -128,6 +129,6 @@ def main(paths):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) not in (2, 3):
+    if len(sys.argv) < 2:
         sys.exit(__doc__)
     main(sys.argv[1:])
