@@ -47,12 +47,13 @@ void TetMesh::order_stars_as_caller() {
                   [&rank](int32_t a, int32_t b) { return rank[a] < rank[b]; });
 }
 
-// Faces are matched through the incidence of one of their vertices (the one
-// in the fewest tets): for face i of tet t, every other tet around that
-// vertex that holds the face is its neighbour.  Each tet finds its own
-// neighbours, so the tets may be shared among threads; a face in three tets
-// or two tets with the same vertices is reported for the lowest tet that
-// shows it, whatever the number of threads.
+// Faces are matched at their smallest vertex: the faces of the tets around
+// vertex v whose smallest vertex is v, keyed by their other two vertices
+// and sorted, come in pairs with equal keys, the two sides of one face.
+// Each face belongs to one vertex, so the vertices may be shared among
+// threads.  A face in three tets, or two tets with the same vertices, is
+// reported for the lowest tet that shows it, whatever the number of
+// threads: match_face() then names the tets for the message.
 namespace {
 
 struct FaceMatch {
@@ -62,42 +63,69 @@ struct FaceMatch {
 
 FaceMatch match_face(const TetMesh& mesh, int32_t t, int i) {
     const auto f = face_of(mesh.tets[t], i);
-    int32_t pivot = f[0];
-    for (const int32_t v : {f[1], f[2]})
-        if (mesh.star_end(v) - mesh.star_begin(v) < mesh.star_end(pivot) - mesh.star_begin(pivot)) pivot = v;
     FaceMatch m;
-    for (const int32_t* s = mesh.star_begin(pivot); s != mesh.star_end(pivot); ++s) {
-        if (*s == t) continue;
+    for (const int32_t* s = mesh.star_begin(f[0]); s != mesh.star_end(f[0]); ++s) {
         const Tet& q = mesh.tets[*s];
-        int hits = 0, missing = -1;
-        for (int k = 0; k < 4; ++k) {
-            if (q[k] == f[0] || q[k] == f[1] || q[k] == f[2]) ++hits;
-            else missing = k;
-        }
-        if (hits < 3) continue;
+        if (*s == t || std::find(q.begin(), q.end(), f[1]) == q.end() || std::find(q.begin(), q.end(), f[2]) == q.end())
+            continue;
         if (m.found != -1) {
             m.third = *s;
             return m;
         }
         m.found = *s;
-        m.local = missing;
+        for (int k = 0; k < 4; ++k)
+            if (q[k] != f[0] && q[k] != f[1] && q[k] != f[2]) m.local = k;
     }
     return m;
 }
 
+struct OwnedFace {
+    uint64_t key;  // the face's two larger vertices
+    int32_t side;  // 4 * tet + the local vertex opposite the face
+    bool operator<(const OwnedFace& o) const { return key < o.key || (key == o.key && side < o.side); }
+};
+
 }  // namespace
 
 void TetMesh::build_neighbors(int base, int threads) {
-    const int32_t nt = num_tets();
+    const int32_t nt = num_tets(), nv = num_vertices();
     neighbors.assign(tets.size(), Tet{-1, -1, -1, -1});
     int32_t first_bad = nt;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(min : first_bad)
-    for (int32_t t = 0; t < nt; ++t)
-        for (int i = 0; i < 4; ++i) {
-            const FaceMatch m = match_face(*this, t, i);
-            if (m.third != -1 || (m.found != -1 && tets[m.found][m.local] == tets[t][i])) first_bad = std::min(first_bad, t);
-            neighbors[t][i] = m.found;
+#pragma omp parallel num_threads(threads) reduction(min : first_bad)
+    {
+        std::vector<OwnedFace> faces;
+#pragma omp for schedule(dynamic, 256)
+        for (int32_t v = 0; v < nv; ++v) {
+            faces.clear();
+            for (const int32_t* s = star_begin(v); s != star_end(v); ++s) {
+                // v is the smallest vertex of the face opposite corner i
+                // when no other corner but i is smaller than v.
+                const Tet& q = tets[*s];
+                int smaller = 0, below = -1;
+                for (int k = 0; k < 4; ++k)
+                    if (q[k] < v) ++smaller, below = k;
+                if (smaller > 1) continue;
+                for (int i = 0; i < 4; ++i) {
+                    if (q[i] == v || (smaller == 1 && i != below)) continue;
+                    int32_t lo = std::numeric_limits<int32_t>::max(), hi = -1;
+                    for (int k = 0; k < 4; ++k)
+                        if (k != i && q[k] != v) lo = std::min(lo, q[k]), hi = std::max(hi, q[k]);
+                    faces.push_back({(static_cast<uint64_t>(lo) << 32) | static_cast<uint32_t>(hi), 4 * *s + i});
+                }
+            }
+            std::sort(faces.begin(), faces.end());
+            for (size_t a = 0, b; a < faces.size(); a = b) {
+                for (b = a + 1; b < faces.size() && faces[b].key == faces[a].key;) ++b;
+                const int32_t t0 = faces[a].side / 4, i0 = faces[a].side % 4;
+                if (b - a > 2) first_bad = std::min(first_bad, t0);  // sorted: t0 is the group's lowest
+                if (b - a != 2) continue;
+                const int32_t t1 = faces[a + 1].side / 4, i1 = faces[a + 1].side % 4;
+                neighbors[t0][i0] = t1;
+                neighbors[t1][i1] = t0;
+                if (tets[t0][i0] == tets[t1][i1]) first_bad = std::min(first_bad, t0);
+            }
         }
+    }
     if (first_bad == nt) return;
     const int32_t t = first_bad;
     for (int i = 0; i < 4; ++i) {
