@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-#include "test_util.h"
+#include "core_checks.hpp"
 
 namespace {
 
@@ -162,16 +162,6 @@ void test_dihedral_angles(void**) {
 
 // --------------------------------------------------------------- meshes
 
-// The arrays of a generated mesh, as the C API passes them to build_mesh.
-bodt::MeshArrays arrays_of(const test_mesh& m) {
-    bodt::MeshArrays a;
-    a.nverts = m.nverts;
-    a.xyz = m.xyz;
-    a.ntets = m.ntets;
-    a.tets = m.tets;
-    return a;
-}
-
 struct Built {
     test_mesh m{};
     bodt::BuiltMesh b;
@@ -179,7 +169,7 @@ struct Built {
 
 void build(Built& out, int n, double size, tm_cube_filter keep, double jitter, uint64_t seed) {
     assert_int_equal(tm_make_cubes(&out.m, n, size, keep, nullptr, jitter, seed), 0);
-    const bodt::MeshArrays a = arrays_of(out.m);
+    const bodt::MeshArrays a = mesh_arrays(out.m);
     try {
         out.b = bodt::build_mesh(a);
     } catch (const bodt::Error& e) {
@@ -349,7 +339,7 @@ void test_one_ring_ball(void**) {
     Built bm;
     assert_int_equal(tm_make_cubes(&bm.m, 4, 2.0, nullptr, nullptr, 0.0, 1), 0);
     to_ball(bm.m);
-    const bodt::MeshArrays a = arrays_of(bm.m);
+    const bodt::MeshArrays a = mesh_arrays(bm.m);
     try {
         bm.b = bodt::build_mesh(a);
     } catch (const bodt::Error& e) {
@@ -369,7 +359,7 @@ void test_one_ring_negative_input(void**) {
     test_mesh m{};
     assert_int_equal(tm_make_cubes(&m, 3, 1.0, keep_l_shape, nullptr, 0.2, 9), 0);
     for (int32_t t = 0; t < m.ntets; ++t) std::swap(m.tets[4 * t + 2], m.tets[4 * t + 3]);
-    const bodt::MeshArrays a = arrays_of(m);
+    const bodt::MeshArrays a = mesh_arrays(m);
     const bodt::BuiltMesh b = bodt::build_mesh(a);
     assert_true(b.flipped);
     check_one_rings(b.mesh, b.surfaces.surface(0), "negative L-shape");
@@ -404,7 +394,7 @@ void expect_surface_refused(tm_cube_filter keep, const char* part) {
     }
     assert_true(thrown);
     // build_mesh refuses it the same way
-    const bodt::MeshArrays a = arrays_of(m);
+    const bodt::MeshArrays a = mesh_arrays(m);
     thrown = false;
     try {
         bodt::build_mesh(a);
@@ -488,7 +478,7 @@ void test_curve_order_tets(void**) {
 void test_curve_order_mesh(void**) {
     test_mesh m{};
     assert_int_equal(tm_make_cubes(&m, 4, 1.0, nullptr, nullptr, 0.2, 3), 0);
-    const bodt::MeshArrays a = arrays_of(m);
+    const bodt::MeshArrays a = mesh_arrays(m);
     const bodt::BuiltMesh b = bodt::build_mesh_in_curve_order(a);
     const bodt::TetMesh& mesh = b.mesh;
     assert_false(mesh.caller.is_identity());

@@ -159,11 +159,7 @@ void test_natural_target(void** state) {
     test_mesh m;
     unsigned char* axes = nullptr;
     assert_int_equal(tm_make_cubes_sliding(&m, N, 1.0, nullptr, nullptr, nullptr, 0.3, 0.3, 17, &axes, nullptr), 0);
-    bodt::MeshArrays arrays;
-    arrays.nverts = m.nverts;
-    arrays.xyz = m.xyz;
-    arrays.ntets = m.ntets;
-    arrays.tets = m.tets;
+    const bodt::MeshArrays arrays = mesh_arrays(m);
     try {
         const bodt::BuiltMesh built = bodt::build_mesh(arrays);
         const bodt::TetMesh& mesh = built.mesh;

@@ -133,11 +133,7 @@ struct Case {
 // The test mesh built into a TetMesh (optionally with regions and fixed
 // vertices) and classified as BODT_MODE_OPT_WEIGHTED does (no features).
 Case make_case(const test_mesh& m, const int32_t* regions, const std::vector<int32_t>& fixed = {}) {
-    bodt::MeshArrays a;
-    a.nverts = m.nverts;
-    a.xyz = m.xyz;
-    a.ntets = m.ntets;
-    a.tets = m.tets;
+    const bodt::MeshArrays a = mesh_arrays(m);
     Case c;
     try {
         bodt::BuiltMesh b = bodt::build_mesh(a);

@@ -1,9 +1,10 @@
 // Helpers shared by the white-box C++ tests (those linking bodt_core):
-// seeded random numbers and rotations, and CHECK, a condition check with a
-// printf-style message.  Header only; include it after the other headers.
+// seeded random numbers and rotations, a generated mesh's arrays for
+// build_mesh, and CHECK, a condition check with a printf-style message.  Header only; include it after the other headers.
 #ifndef BODT_TEST_CORE_CHECKS_HPP
 #define BODT_TEST_CORE_CHECKS_HPP
 
+#include "mesh/mesh_builder.hpp"
 #include "quality/tet_geometry.hpp"
 
 #include "mesh_gen.h"
@@ -22,6 +23,16 @@ struct Rng {
     double uniform(double lo, double hi) { return lo + (hi - lo) * tm_rng_uniform(&r); }
     bodt::Vec3 point(double lo, double hi) { return bodt::Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)); }
 };
+
+// The arrays of a generated mesh, as the C API passes them to build_mesh.
+inline bodt::MeshArrays mesh_arrays(const test_mesh& m) {
+    bodt::MeshArrays a;
+    a.nverts = m.nverts;
+    a.xyz = m.xyz;
+    a.ntets = m.ntets;
+    a.tets = m.tets;
+    return a;
+}
 
 // A random rotation (from a random unit quaternion).
 inline Eigen::Matrix3d random_rotation(Rng& rng) {
