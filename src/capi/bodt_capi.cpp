@@ -201,12 +201,9 @@ bodt::MeshData to_mesh_data(const bodt_mesh* h) {
     const bodt::TetMesh& mesh = h->mesh;
     bodt::MeshData d;
     d.xyz.resize(mesh.points.size() * 3);
-    for (int32_t v = 0; v < mesh.num_vertices(); ++v)
-        for (int k = 0; k < 3; ++k) d.xyz[3 * static_cast<size_t>(mesh.caller_vertex(v)) + k] = mesh.points[v][k];
+    to_caller_xyz(mesh, d.xyz.data());
     d.tets.resize(mesh.tets.size() * 4);
-    for (int32_t t = 0; t < mesh.num_tets(); ++t)
-        for (int k = 0; k < 4; ++k)
-            d.tets[4 * static_cast<size_t>(mesh.caller_tet(t)) + k] = mesh.caller_vertex(mesh.tets[t][k]);
+    to_caller_corners(mesh, false, 0, d.tets.data());  // files hold the positive orientation, 0-based
     d.regions.resize(mesh.regions.size());
     to_caller_tets(mesh, mesh.regions, d.regions.data());
     for (const bodt::SurfaceFace& f : mesh.surface_faces()) {
@@ -378,24 +375,16 @@ int bodt_mesh_get_counts(const bodt_mesh* mesh, int32_t* nverts, int32_t* ntets,
 int bodt_mesh_get_vertices(const bodt_mesh* mesh, double* xyz, size_t capacity) {
     return with_mesh(mesh, [&] {
         require(xyz != nullptr, "xyz is NULL");
-        const bodt::TetMesh& m = mesh->mesh;
-        require_capacity(capacity, 3 * m.points.size(), "xyz");
-        for (int32_t v = 0; v < m.num_vertices(); ++v)
-            for (int k = 0; k < 3; ++k) xyz[3 * static_cast<size_t>(m.caller_vertex(v)) + k] = m.points[v][k];
+        require_capacity(capacity, 3 * mesh->mesh.points.size(), "xyz");
+        to_caller_xyz(mesh->mesh, xyz);
     });
 }
 
 int bodt_mesh_get_tets(const bodt_mesh* mesh, int32_t* tets, size_t capacity) {
     return with_mesh(mesh, [&] {
         require(tets != nullptr, "tets is NULL");
-        const bodt::TetMesh& m = mesh->mesh;
-        require_capacity(capacity, 4 * m.tets.size(), "tets");
-        for (int32_t t = 0; t < m.num_tets(); ++t) {
-            bodt::Tet q = m.tets[t];
-            if (mesh->flipped) std::swap(q[2], q[3]);
-            int32_t* out = tets + 4 * static_cast<size_t>(m.caller_tet(t));
-            for (int k = 0; k < 4; ++k) out[k] = m.caller_vertex(q[k]) + mesh->index_base;
-        }
+        require_capacity(capacity, 4 * mesh->mesh.tets.size(), "tets");
+        to_caller_corners(mesh->mesh, mesh->flipped, mesh->index_base, tets);
     });
 }
 

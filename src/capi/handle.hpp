@@ -94,6 +94,24 @@ void to_caller_vertices(const bodt::TetMesh& mesh, const std::vector<T>& values,
     for (int32_t v = 0; v < mesh.num_vertices(); ++v) out[mesh.caller_vertex(v)] = values[static_cast<size_t>(v)];
 }
 
+// The coordinates in the caller's vertex order: out holds 3 per vertex.
+inline void to_caller_xyz(const bodt::TetMesh& mesh, double* out) {
+    for (int32_t v = 0; v < mesh.num_vertices(); ++v)
+        for (int k = 0; k < 3; ++k) out[3 * static_cast<size_t>(mesh.caller_vertex(v)) + k] = mesh.points[v][k];
+}
+
+// The tets in the caller's order, by the caller's vertex indices plus
+// `base`, corners 2 and 3 swapped when `flipped` (the caller's orientation
+// restored): out holds 4 per tet.
+inline void to_caller_corners(const bodt::TetMesh& mesh, bool flipped, int base, int32_t* out) {
+    for (int32_t t = 0; t < mesh.num_tets(); ++t) {
+        bodt::Tet q = mesh.tets[t];
+        if (flipped) std::swap(q[2], q[3]);
+        int32_t* o = out + 4 * static_cast<size_t>(mesh.caller_tet(t));
+        for (int k = 0; k < 4; ++k) o[k] = mesh.caller_vertex(q[k]) + base;
+    }
+}
+
 // Copies `full` into a caller struct of `size` bytes whose first member is
 // that size: the caller gets what fits, the rest is zeroed.
 template <class T>
