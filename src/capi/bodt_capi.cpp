@@ -32,8 +32,7 @@ bodt_mesh* make_handle(const bodt::MeshArrays& arrays) {
 bool is_mesh_face(const bodt::TetMesh& mesh, const bodt::FaceKey& k) {
     for (const int32_t* t = mesh.star_begin(k.v[0]); t != mesh.star_end(k.v[0]); ++t) {
         const bodt::Tet& q = mesh.tets[*t];
-        const auto has = [&q](int32_t v) { return std::find(q.begin(), q.end(), v) != q.end(); };
-        if (has(k.v[1]) && has(k.v[2])) return true;
+        if (bodt::holds(q, k.v[1]) && bodt::holds(q, k.v[2])) return true;
     }
     return false;
 }
@@ -63,7 +62,7 @@ bool is_surface_edge(const bodt::TetMesh& mesh, int32_t a, int32_t b) {
         const bodt::Tet& q = mesh.tets[*t];
         for (int i = 0; i < 4; ++i) {
             if (q[i] == a || q[i] == b || !mesh.is_surface_face(*t, i)) continue;
-            if (std::find(q.begin(), q.end(), b) != q.end()) return true;
+            if (bodt::holds(q, b)) return true;
         }
     }
     return false;

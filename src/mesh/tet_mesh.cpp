@@ -66,7 +66,7 @@ FaceMatch match_face(const TetMesh& mesh, int32_t t, int i) {
     FaceMatch m;
     for (const int32_t* s = mesh.star_begin(f[0]); s != mesh.star_end(f[0]); ++s) {
         const Tet& q = mesh.tets[*s];
-        if (*s == t || std::find(q.begin(), q.end(), f[1]) == q.end() || std::find(q.begin(), q.end(), f[2]) == q.end())
+        if (*s == t || !holds(q, f[1]) || !holds(q, f[2]))
             continue;
         if (m.found != -1) {
             m.third = *s;

@@ -27,6 +27,10 @@ struct VertexColouring;  // mesh/vertex_colouring.hpp
 
 using Tet = std::array<int32_t, 4>;
 
+// v is a vertex of q (without branches: the adjacency scans test this for
+// every tet of a star).
+inline bool holds(const Tet& q, int32_t v) { return (q[0] == v) | (q[1] == v) | (q[2] == v) | (q[3] == v); }
+
 // A face by its three vertex indices, sorted ascending.
 struct FaceKey {
     std::array<int32_t, 3> v;

@@ -28,7 +28,7 @@ int32_t across(const TetMesh& mesh, const GeometryModel& g, int32_t a, int32_t b
     if (g.sharp_edges().count(edge_key(a, b))) return -1;
     for (const int32_t* t = mesh.star_begin(a); t != mesh.star_end(a); ++t) {
         const Tet& q = mesh.tets[*t];
-        if (std::find(q.begin(), q.end(), b) == q.end()) continue;
+        if (!holds(q, b)) continue;
         for (int i = 0; i < 4; ++i) {
             if (q[i] == a || q[i] == b || !mesh.is_surface_face(*t, i)) continue;
             for (int k = 0; k < 3; ++k) {
@@ -74,7 +74,7 @@ bool locally_delaunay(const TetMesh& mesh, int32_t t) {
         if (s < 0) continue;
         const Tet& q = mesh.tets[s];
         for (int32_t x : q)
-            if (std::find(mesh.tets[t].begin(), mesh.tets[t].end(), x) == mesh.tets[t].end() &&
+            if (!holds(mesh.tets[t], x) &&
                 in_circumsphere(p, mesh.points[x]))
                 return false;
     }

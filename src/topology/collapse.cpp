@@ -9,8 +9,6 @@ namespace bodt {
 
 namespace {
 
-bool holds(const Tet& q, int32_t v) { return std::find(q.begin(), q.end(), v) != q.end(); }
-
 bool has_tet(const EditableMesh& mesh, const Tet& q) { return !mesh.tets_holding({q[0], q[1], q[2], q[3]}).empty(); }
 
 bool has_face(const EditableMesh& mesh, int32_t a, int32_t b, int32_t c) {

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
+#include <limits>
 #include <string>
 
 namespace bodt {
@@ -12,6 +14,7 @@ namespace bodt {
 namespace {
 
 constexpr int32_t kNoMarker = INT32_MIN;
+constexpr double kUnknownSine = std::numeric_limits<double>::quiet_NaN();
 
 // Parity of the permutation taking q to (a, b, c, d): true when even.
 bool even_order(const Tet& q, int32_t a, int32_t b, int32_t c, int32_t d) {
@@ -33,6 +36,8 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
       tets_(mesh.tets),
       removed_(mesh.tets.size()),
       regions_(mesh.regions),
+      sine_(mesh.tets.size(), kUnknownSine),
+      stamp_(mesh.points.size(), 0),
       vtets_(mesh.points.size()),
       markers_(mesh.face_markers),
       caller_features_(mesh.feature_edges),
@@ -98,11 +103,16 @@ TetPoints EditableMesh::tet_points(int32_t t) const {
     return {points_[q[0]], points_[q[1]], points_[q[2]], points_[q[3]]};
 }
 
+double EditableMesh::tet_sine(int32_t t) const {
+    if (std::isnan(sine_[t])) sine_[t] = min_dihedral_sine(tet_points(t));
+    return sine_[t];
+}
+
 std::vector<int32_t> EditableMesh::tets_holding(std::initializer_list<int32_t> vs) const {
     std::vector<int32_t> out;
     for (int32_t t : vtets_[*vs.begin()]) {
         const Tet& q = tets_[t];
-        if (std::all_of(vs.begin(), vs.end(), [&q](int32_t v) { return std::find(q.begin(), q.end(), v) != q.end(); }))
+        if (std::all_of(vs.begin(), vs.end(), [&q](int32_t v) { return holds(q, v); }))
             out.push_back(t);
     }
     return out;
@@ -112,8 +122,7 @@ int EditableMesh::face_tets(const FaceKey& f, int32_t out[2]) const {
     int n = 0;
     for (int32_t t : vtets_[f.v[0]]) {
         const Tet& q = tets_[t];
-        const auto has = [&q](int32_t v) { return std::find(q.begin(), q.end(), v) != q.end(); };
-        if (has(f.v[1]) && has(f.v[2]) && n < 2) out[n++] = t;
+        if (holds(q, f.v[1]) && holds(q, f.v[2]) && n < 2) out[n++] = t;
     }
     return n;
 }
@@ -134,10 +143,16 @@ int32_t EditableMesh::marker(const FaceKey& f) const {
 bool EditableMesh::is_surface_edge(int32_t a, int32_t b) const {
     for (int32_t t : vtets_[a]) {
         const Tet& q = tets_[t];
-        if (std::find(q.begin(), q.end(), b) == q.end()) continue;
+        if (!holds(q, b)) continue;
         for (int32_t c : q)
             if (c != a && c != b && is_surface_face(FaceKey::of(a, b, c))) return true;
     }
+    return false;
+}
+
+bool EditableMesh::has_edge(int32_t a, int32_t b) const {
+    for (int32_t t : vtets_[a])
+        if (holds(tets_[t], b)) return true;
     return false;
 }
 
@@ -146,10 +161,11 @@ bool EditableMesh::edge_ring(int32_t a, int32_t b, EdgeRing& out) const {
     out.tets.clear();
     out.closed = false;
     // Each tet (a, b, c, d) in positive order links c -> d.
-    std::vector<std::array<int32_t, 3>> links;  // c, d, tet
+    auto& links = ring_links_;  // c, d, tet
+    links.clear();
     for (int32_t t : vtets_[a]) {
         const Tet& q = tets_[t];
-        if (std::find(q.begin(), q.end(), b) == q.end()) continue;
+        if (!holds(q, b)) continue;
         int32_t cd[2], n = 0;
         for (int32_t v : q)
             if (v != a && v != b) cd[n++] = v;
@@ -166,16 +182,15 @@ bool EditableMesh::edge_ring(int32_t a, int32_t b, EdgeRing& out) const {
             break;
         }
     }
-    std::vector<char> used(links.size(), 0);
     size_t cur = start;
     out.ring.push_back(links[cur][0]);
     for (size_t k = 0; k < links.size(); ++k) {
-        used[cur] = 1;
+        links[cur][0] = -1;  // used: no vertex links from -1
         out.tets.push_back(links[cur][2]);
         const int32_t d = links[cur][1];
         size_t nxt = links.size();
         for (size_t i = 0; i < links.size(); ++i)
-            if (!used[i] && links[i][0] == d) {
+            if (links[i][0] == d) {
                 if (nxt != links.size()) return false;  // two tets continue the fan
                 nxt = i;
             }
@@ -203,13 +218,17 @@ void EditableMesh::neighbors(int32_t v, std::vector<int32_t>& out) const {
 // ------------------------------------------------------------------ changes
 
 void EditableMesh::attach(int32_t t) {
-    for (int32_t v : tets_[t]) vtets_[v].push_back(t);
+    for (int32_t v : tets_[t]) {
+        vtets_[v].push_back(t);
+        stamp_[v] = ++clock_;
+    }
 }
 
 void EditableMesh::detach(int32_t t) {
     for (int32_t v : tets_[t]) {
         auto& list = vtets_[v];
         list.erase(std::find(list.begin(), list.end(), t));
+        stamp_[v] = ++clock_;
     }
 }
 
@@ -220,13 +239,20 @@ int32_t EditableMesh::add_vertex(const Vec3& p, VertexClass cls, Parents parents
     pins_.push_back(0);
     parents_.push_back(std::move(parents));
     vtets_.emplace_back();
+    stamp_.push_back(++clock_);
     journal_.push_back({Change::AddVertex, v, {}, 0, Vec3::Zero(), 0, {}});
     return v;
 }
 
 void EditableMesh::move_vertex(int32_t v, const Vec3& p) {
     journal_.push_back({Change::MoveVertex, v, {}, 0, points_[v], 0, {}});
+    place(v, p);
+}
+
+void EditableMesh::place(int32_t v, const Vec3& p) {
     points_[v] = p;
+    stamp_[v] = ++clock_;
+    for (int32_t t : vtets_[v]) sine_[t] = kUnknownSine;
 }
 
 void EditableMesh::set_parents(int32_t v, Parents parents) {
@@ -239,6 +265,7 @@ int32_t EditableMesh::add_tet(const Tet& q, int32_t region, int32_t origin) {
     const int32_t t = tet_capacity();
     tets_.push_back(q);
     removed_.push_back({-1, -1, -1, -1});
+    sine_.push_back(kUnknownSine);
     regions_.push_back(region);
     origin_.push_back(origin);
     attach(t);
@@ -297,8 +324,9 @@ void EditableMesh::rollback(size_t mark) {
                 pins_.pop_back();
                 parents_.pop_back();
                 vtets_.pop_back();
+                stamp_.pop_back();
                 break;
-            case Change::MoveVertex: points_[e.index] = e.old_point; break;
+            case Change::MoveVertex: place(e.index, e.old_point); break;
             case Change::SetParents:
                 parents_[e.index] = std::move(old_parents_.back());
                 old_parents_.pop_back();
@@ -307,11 +335,13 @@ void EditableMesh::rollback(size_t mark) {
                 detach(e.index);
                 tets_.pop_back();
                 removed_.pop_back();
+                sine_.pop_back();
                 regions_.pop_back();
                 origin_.pop_back();
                 break;
             case Change::RemoveTet:
                 tets_[e.index] = removed_[e.index];
+                sine_[e.index] = kUnknownSine;
                 attach(e.index);
                 break;
             case Change::SetMarker:

@@ -9,6 +9,7 @@
 #include "features/vertex_classes.hpp"
 #include "mesh/tet_mesh.hpp"
 
+#include <array>
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
@@ -55,6 +56,10 @@ public:
     const EdgeSet& feature_edges() const { return features_; }
     const Parents& parents(int32_t v) const { return parents_[v]; }
     TetPoints tet_points(int32_t t) const;
+    // The smallest dihedral sine of live tet t (min_dihedral_sine), kept
+    // until one of its vertices moves: the flip and insertion passes ask
+    // for the same tets many times.
+    double tet_sine(int32_t t) const;
 
     // The tets holding every vertex of `vs` (an edge, a face, a tet).
     std::vector<int32_t> tets_holding(std::initializer_list<int32_t> vs) const;
@@ -70,8 +75,15 @@ public:
     // False when the tets around the edge do not form one fan (a
     // non-manifold edge) or there are none.
     bool edge_ring(int32_t a, int32_t b, EdgeRing& out) const;
+    // Some tet holds both a and b.
+    bool has_edge(int32_t a, int32_t b) const;
     // The vertices sharing a tet with v.
     void neighbors(int32_t v, std::vector<int32_t>& out) const;
+    // A clock that every change of a vertex's point or tets advances, and
+    // the time of v's last change: a test that read only vertices whose
+    // stamp is at most an earlier clock() would give the same answer now.
+    uint64_t clock() const { return clock_; }
+    uint64_t stamp(int32_t v) const { return stamp_[v]; }
 
     // ---- changes (all logged)
     int32_t add_vertex(const Vec3& p, VertexClass cls, Parents parents);
@@ -112,6 +124,8 @@ private:
     };
     void detach(int32_t t);
     void attach(int32_t t);
+    // Sets v's point and forgets the sines of its tets.
+    void place(int32_t v, const Vec3& p);
 
     std::vector<Vec3> points_;
     std::vector<VertexClass> cls_;
@@ -120,6 +134,10 @@ private:
     std::vector<Tet> tets_;  // removed: {-1, -1, -1, -1}
     std::vector<Tet> removed_;  // the vertices of a removed tet, for rollback
     std::vector<int32_t> regions_, origin_;
+    mutable std::vector<double> sine_;  // tet_sine, NaN: not known
+    std::vector<uint64_t> stamp_;       // per vertex, see stamp()
+    uint64_t clock_ = 0;
+    mutable std::vector<std::array<int32_t, 3>> ring_links_;  // edge_ring's scratch
     std::vector<std::vector<int32_t>> vtets_;
     std::unordered_map<FaceKey, int32_t, FaceKeyHash> markers_;
     EdgeRefs caller_features_;  // the caller's feature edges and refs, kept in the output

@@ -4,13 +4,14 @@
 #include "topology/operations.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 namespace bodt {
 
 double worst_sine(const EditableMesh& mesh, const std::vector<int32_t>& tets) {
     double worst = 1.0;
-    for (int32_t t : tets) worst = std::min(worst, min_dihedral_sine(mesh.tet_points(t)));
+    for (int32_t t : tets) worst = std::min(worst, mesh.tet_sine(t));
     return worst;
 }
 
@@ -93,7 +94,11 @@ bool fits_cavity(const EditableMesh& mesh, const std::vector<int32_t>& old_tets,
 
 bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& rules, double must_exceed) {
     EdgeRing r;
-    if (!mesh.edge_ring(a, b, r)) return false;
+    return mesh.edge_ring(a, b, r) && remove_edge(mesh, a, b, r, rules, must_exceed);
+}
+
+bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing& r, const TopologyRules& rules,
+                 double must_exceed) {
     const int n = static_cast<int>(r.ring.size());  // polygon vertices
     if (n > kMaxEdgeRing || n < 3 || !one_region(mesh, r.tets)) return false;
     if (!r.closed && (!rules.surface_may_change || mesh.is_feature_edge(a, b))) return false;
@@ -156,7 +161,7 @@ bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& 
 
 bool flip_23(EditableMesh& mesh, const FaceKey& face, const TopologyRules& rules, double must_exceed) {
     int32_t t[2];
-    if (mesh.face_tets(face, t) != 2 || mesh.region(t[0]) != mesh.region(t[1]) || mesh.has_marker(face)) return false;
+    if (mesh.face_tets(face, t) != 2 || mesh.region(t[0]) != mesh.region(t[1])) return false;
     // The face as seen out of t[0], and the two apexes.
     const Tet& q0 = mesh.tet(t[0]);
     int i0 = 0;
@@ -166,19 +171,24 @@ bool flip_23(EditableMesh& mesh, const FaceKey& face, const TopologyRules& rules
     int32_t e = -1;
     for (int32_t v : q1)
         if (v != face.v[0] && v != face.v[1] && v != face.v[2]) e = v;
-    // The new edge (d, e) must not exist yet.
-    if (!mesh.tets_holding({d, e}).empty()) return false;
     const int32_t f[3] = {q0[kFaceVertex[i0][0]], q0[kFaceVertex[i0][1]], q0[kFaceVertex[i0][2]]};
+    // (f_k, f_k+1, f_k+2) points out of t[0], towards e: (f_k, f_k+1, d, e)
+    // is positive.  The worst sine first: most flips fail it, and it needs
+    // no lookup.
+    std::array<TetPoints, 3> p;
+    const double floor = sine_floor(rules, must_exceed);
+    for (int k = 0; k < 3; ++k) {
+        p[k] = {mesh.point(f[k]), mesh.point(f[(k + 1) % 3]), mesh.point(d), mesh.point(e)};
+        if (!(min_dihedral_sine(p[k]) > floor)) return false;
+    }
+    // A marked face stays; the new edge (d, e) must not exist yet.
+    if (mesh.has_marker(face) || mesh.has_edge(d, e)) return false;
     const std::vector<int32_t> old{t[0], t[1]};
     const TetLimits limits = limits_for(mesh, old, rules, must_exceed);
+    for (const TetPoints& shape : p)
+        if (!acceptable_tet(shape, limits)) return false;
     NewTets fresh;
-    for (int k = 0; k < 3; ++k) {
-        // (f_k, f_k+1, f_k+2) points out of t[0], towards e: (f_k, f_k+1, d, e) is positive.
-        const Tet q{f[k], f[(k + 1) % 3], d, e};
-        const TetPoints p{mesh.point(q[0]), mesh.point(q[1]), mesh.point(q[2]), mesh.point(q[3])};
-        if (!acceptable_tet(p, limits)) return false;
-        fresh.push_back(q);
-    }
+    for (int k = 0; k < 3; ++k) fresh.push_back({f[k], f[(k + 1) % 3], d, e});
     if (!fits_cavity(mesh, old, fresh)) return false;
     if (rules.delaunay && !delaunay_flip(mesh, old, fresh)) return false;
     replace(mesh, old, fresh);

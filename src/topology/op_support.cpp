@@ -13,10 +13,13 @@ constexpr double kFlatTolerance = 1e-9;
 
 }  // namespace
 
+double sine_floor(const TopologyRules& rules, double must_exceed) {
+    return rules.allow_inverted ? -std::numeric_limits<double>::infinity() : std::max(must_exceed, 0.0);
+}
+
 TetLimits limits_for(const EditableMesh& mesh, const std::vector<int32_t>& replaced, const TopologyRules& rules,
                      double must_exceed) {
-    TetLimits limits{rules.allow_inverted ? -std::numeric_limits<double>::infinity() : std::max(must_exceed, 0.0),
-                     rules.min_stretch, rules.never_worse, {-1.0, 1.0}};
+    TetLimits limits{sine_floor(rules, must_exceed), rules.min_stretch, rules.never_worse, {-1.0, 1.0}};
     for (int32_t t : replaced) limits.stretch_floor = std::min(limits.stretch_floor, stretch(mesh.tet_points(t)));
     if (rules.never_worse) limits.range = cosine_range(mesh, replaced);
     return limits;

@@ -21,6 +21,8 @@ struct TetLimits {
     bool keep_range;
     CosineRange range;
 };
+// limits_for's must_exceed: the worst sine a new tet must exceed.
+double sine_floor(const TopologyRules& rules, double must_exceed);
 TetLimits limits_for(const EditableMesh& mesh, const std::vector<int32_t>& replaced, const TopologyRules& rules,
                      double must_exceed);
 bool acceptable_tet(const TetPoints& p, const TetLimits& limits);

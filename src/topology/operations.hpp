@@ -49,6 +49,9 @@ inline constexpr int kMaxEdgeRing = 7;
 // polygon, Klincsek's O(k^3)).  k = 3 is the 3-2 flip, k = 4 the 4-4 flip,
 // and a surface edge with k = 2 the 2-2 flip.
 bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& rules, double must_exceed);
+// The same with the edge's ring known (mesh.edge_ring(a, b, ring) held).
+bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing& ring, const TopologyRules& rules,
+                 double must_exceed);
 
 // The 2-3 flip: the two tets on face (a, b, c) become three around the edge
 // joining their apexes.
@@ -78,7 +81,7 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
 // TopologyRules) if they are equal.  Returns the surviving vertex or -1.
 int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& rules, double must_exceed);
 
-// The worst dihedral sine of tets (min_dihedral_sine).
+// The worst dihedral sine of live tets (min_dihedral_sine).
 double worst_sine(const EditableMesh& mesh, const std::vector<int32_t>& tets);
 
 }  // namespace bodt

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <unordered_map>
 
 namespace bodt {
 
@@ -37,20 +38,73 @@ void relocate(EditableMesh& mesh, int32_t v, const TopologySettings& s) {
     mesh.move_vertex(v, start);
 }
 
+// The flips that failed earlier in a pass, each with the clock then and the
+// vertices whose points and tets the attempt read: while none of those
+// changed, the attempt would fail again.  Bad tets cluster, so most edges
+// and faces come up from several of them.
+class FailedFlips {
+public:
+    // Edge (a, b), directed: edge removal's tests on a surface edge are
+    // made from a's side.
+    bool repeats(const EditableMesh& mesh, int32_t a, int32_t b) const { return repeats(mesh, edges_, directed(a, b)); }
+    bool repeats(const EditableMesh& mesh, const FaceKey& face) const { return repeats(mesh, faces_, face); }
+    // An edge: its ring's vertices too when edge_ring built it.
+    void record(const EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing* ring) {
+        Attempt& x = edges_[directed(a, b)] = {mesh.clock(), 0, {}};
+        x.read[x.n++] = a;
+        x.read[x.n++] = b;
+        if (ring)
+            for (int32_t v : ring->ring) x.read[x.n++] = v;
+    }
+    // A face: the apexes of its tets too (pair: those tets, or null).
+    void record(const EditableMesh& mesh, const FaceKey& face, const int32_t* pair) {
+        Attempt& x = faces_[face] = {mesh.clock(), 0, {}};
+        for (int32_t v : face.v) x.read[x.n++] = v;
+        for (int k = 0; pair && k < 2; ++k)
+            for (int32_t v : mesh.tet(pair[k]))
+                if (v != face.v[0] && v != face.v[1] && v != face.v[2]) x.read[x.n++] = v;
+    }
+
+private:
+    struct Attempt {
+        uint64_t clock;
+        int n;
+        std::array<int32_t, kMaxEdgeRing + 3> read;  // an edge and its ring (one more vertex when open)
+    };
+    static uint64_t directed(int32_t a, int32_t b) {
+        return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
+    }
+    template <class Map, class Key>
+    static bool repeats(const EditableMesh& mesh, const Map& map, const Key& key) {
+        const auto it = map.find(key);
+        if (it == map.end()) return false;
+        const Attempt& x = it->second;
+        for (int i = 0; i < x.n; ++i)
+            if (mesh.stamp(x.read[i]) > x.clock) return false;
+        return true;
+    }
+    std::unordered_map<uint64_t, Attempt> edges_;
+    std::unordered_map<FaceKey, Attempt, FaceKeyHash> faces_;
+};
+
 // Tries one edge removal or 2-3 flip among the edges and faces of t that
 // raises the worst sine of the tets involved.
-bool flip_around(EditableMesh& mesh, int32_t t, const TopologyRules& rules) {
+bool flip_around(EditableMesh& mesh, int32_t t, const TopologyRules& rules, EdgeRing& ring, FailedFlips& failed) {
     const Tet q = mesh.tet(t);
     for (const auto& e : kEdgeVertex) {
-        const std::vector<int32_t> ring = mesh.tets_holding({q[e[0]], q[e[1]]});
-        if (static_cast<int>(ring.size()) > kMaxEdgeRing) continue;
-        if (remove_edge(mesh, q[e[0]], q[e[1]], rules, worst_sine(mesh, ring) + kGain)) return true;
+        const int32_t a = q[e[0]], b = q[e[1]];
+        if (failed.repeats(mesh, a, b)) continue;
+        const bool built = mesh.edge_ring(a, b, ring) && static_cast<int>(ring.tets.size()) <= kMaxEdgeRing;
+        if (built && remove_edge(mesh, a, b, ring, rules, worst_sine(mesh, ring.tets) + kGain)) return true;
+        failed.record(mesh, a, b, built ? &ring : nullptr);
     }
     for (const auto& f : kFaceVertex) {
         const FaceKey face = FaceKey::of(q[f[0]], q[f[1]], q[f[2]]);
+        if (failed.repeats(mesh, face)) continue;
         int32_t pair[2];
-        if (mesh.face_tets(face, pair) != 2) continue;
-        if (flip_23(mesh, face, rules, worst_sine(mesh, {pair[0], pair[1]}) + kGain)) return true;
+        const bool inner = mesh.face_tets(face, pair) == 2;
+        if (inner && flip_23(mesh, face, rules, worst_sine(mesh, {pair[0], pair[1]}) + kGain)) return true;
+        failed.record(mesh, face, inner ? pair : nullptr);
     }
     return false;
 }
@@ -64,7 +118,7 @@ bool locally_delaunay(const EditableMesh& mesh, int32_t t) {
         const int n = mesh.face_tets(FaceKey::of(q[f[0]], q[f[1]], q[f[2]]), pair);
         for (int k = 0; k < n; ++k)
             for (int32_t x : mesh.tet(pair[k]))
-                if (std::find(q.begin(), q.end(), x) == q.end() && in_circumsphere(p, mesh.point(x))) return false;
+                if (!holds(q, x) && in_circumsphere(p, mesh.point(x))) return false;
     }
     return true;
 }
@@ -79,10 +133,12 @@ int32_t flip_pass(EditableMesh& mesh, const TopologyRules& rules, double flip_an
     const double below = std::sin(flip_angle_deg * kDegree);
     int32_t flips = 0;
     const int32_t cap = 2 * mesh.tet_capacity();
+    EdgeRing ring;
+    FailedFlips failed;
     for (int32_t t = 0; t < mesh.tet_capacity() && flips < cap; ++t) {
-        if (!mesh.alive(t) || min_dihedral_sine(mesh.tet_points(t)) >= below) continue;
+        if (!mesh.alive(t) || mesh.tet_sine(t) >= below) continue;
         if (rules.delaunay && locally_delaunay(mesh, t)) continue;
-        flips += flip_around(mesh, t, rules);
+        flips += flip_around(mesh, t, rules, ring, failed);
     }
     return flips;
 }
@@ -119,7 +175,7 @@ std::vector<int32_t> bad_tets_by_quality(const EditableMesh& mesh, double bad_si
     std::vector<std::pair<double, int32_t>> bad;
     for (int32_t t = 0; t < mesh.tet_capacity(); ++t) {
         if (!mesh.alive(t)) continue;
-        const double s = min_dihedral_sine(mesh.tet_points(t));
+        const double s = mesh.tet_sine(t);
         if (s < bad_sine) bad.push_back({s, t});
     }
     std::sort(bad.begin(), bad.end());
