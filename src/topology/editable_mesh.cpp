@@ -16,15 +16,21 @@ namespace {
 constexpr int32_t kNoMarker = INT32_MIN;
 constexpr double kUnknownSine = std::numeric_limits<double>::quiet_NaN();
 
-// Parity of the permutation taking q to (a, b, c, d): true when even.
-bool even_order(const Tet& q, int32_t a, int32_t b, int32_t c, int32_t d) {
-    const int32_t want[4] = {a, b, c, d};
-    int pos[4];
-    for (int i = 0; i < 4; ++i) pos[i] = static_cast<int>(std::find(q.begin(), q.end(), want[i]) - q.begin());
+// The two vertices of q other than a and b, ordered so that (a, b, c, d)
+// is an even permutation of q: the positions of a, b, c, d in q have an
+// even number of inversions.
+std::array<int32_t, 2> other_two(const Tet& q, int32_t a, int32_t b) {
+    int pa = 0, pb = 0, pc = -1, pd = -1;
+    for (int i = 0; i < 4; ++i) {
+        if (q[i] == a) pa = i;
+        else if (q[i] == b) pb = i;
+        else (pc < 0 ? pc : pd) = i;
+    }
+    const int pos[4] = {pa, pb, pc, pd};
     int inversions = 0;
     for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) inversions += pos[i] > pos[j];
-    return inversions % 2 == 0;
+    return inversions % 2 == 0 ? std::array<int32_t, 2>{q[pc], q[pd]} : std::array<int32_t, 2>{q[pd], q[pc]};
 }
 
 }  // namespace
@@ -166,10 +172,7 @@ bool EditableMesh::edge_ring(int32_t a, int32_t b, EdgeRing& out) const {
     for (int32_t t : vtets_[a]) {
         const Tet& q = tets_[t];
         if (!holds(q, b)) continue;
-        int32_t cd[2], n = 0;
-        for (int32_t v : q)
-            if (v != a && v != b) cd[n++] = v;
-        if (!even_order(q, a, b, cd[0], cd[1])) std::swap(cd[0], cd[1]);
+        const std::array<int32_t, 2> cd = other_two(q, a, b);
         links.push_back({cd[0], cd[1], t});
     }
     if (links.empty()) return false;

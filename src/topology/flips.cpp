@@ -117,8 +117,10 @@ bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing& r, co
                 const double sub = std::min(dp.best[i][m], dp.best[m][j]);
                 if (!(sub > dp.best[i][j])) continue;
                 const Vec3 &pi = mesh.point(r.ring[i]), &pm = mesh.point(r.ring[m]), &pj = mesh.point(r.ring[j]);
-                const double q = std::min({sub, min_dihedral_sine({mesh.point(a), pi, pm, pj}),
-                                           min_dihedral_sine({mesh.point(b), pj, pm, pi})});
+                // The tet on b's side only if the one on a's side could win.
+                double q = std::min(sub, min_dihedral_sine({mesh.point(a), pi, pm, pj}));
+                if (!(q > dp.best[i][j])) continue;
+                q = std::min(q, min_dihedral_sine({mesh.point(b), pj, pm, pi}));
                 if (!(q > dp.best[i][j])) continue;
                 dp.best[i][j] = q;
                 dp.split[i][j] = m;
