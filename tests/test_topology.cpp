@@ -67,6 +67,16 @@
 //   collapse_pass        improve_topology (collapse only) on a box with two
 //                        interior vertices pulled together: the short edge
 //                        goes and the worst sine goes up
+//   flip_pass_plain      improve_topology (flips only, with and without sine
+//                        bounds from the tets' shapes) gives the same mesh
+//                        and count as the plain pass written out here: every
+//                        bad tet, every edge and face tried, nothing skipped
+//   sine_bounds          sine_at_least agrees with min_dihedral_sine at and
+//                        around every tet's sine, with and without bounds,
+//                        and after a move drops the bounds of the star
+//   stamps               a move, an added or removed tet advance the clock
+//                        and the stamps of exactly the vertices touched;
+//                        a rollback advances them again, never back
 #include "common/error.hpp"
 #include "features/vertex_classes.hpp"
 #include "mesh/mesh_builder.hpp"
@@ -1697,6 +1707,140 @@ void test_flip_pass(void**) {
     assert_true(worst_sine(out2) >= after);
 }
 
+// The flip pass as plainly written (no cached sines, bounds or skipped
+// repeats): the reference for improve_topology's.
+int32_t plain_flip_pass(EditableMesh& em, const TopologyRules& rules, double flip_angle_deg) {
+    constexpr double kGain = 1e-12;
+    const auto worst = [&em](const std::vector<int32_t>& tets) {
+        double w = 1.0;
+        for (int32_t t : tets) w = std::min(w, bodt::min_dihedral_sine(em.tet_points(t)));
+        return w;
+    };
+    const double below = std::sin(flip_angle_deg / kDeg);
+    int32_t flips = 0;
+    for (int32_t t = 0; t < em.tet_capacity(); ++t) {
+        if (!em.alive(t) || bodt::min_dihedral_sine(em.tet_points(t)) >= below) continue;
+        const Tet q = em.tet(t);
+        bool done = false;
+        for (const auto& e : bodt::kEdgeVertex) {
+            const std::vector<int32_t> ring = em.tets_holding({q[e[0]], q[e[1]]});
+            if (done || static_cast<int>(ring.size()) > bodt::kMaxEdgeRing) continue;
+            done = bodt::remove_edge(em, q[e[0]], q[e[1]], rules, worst(ring) + kGain);
+        }
+        for (const auto& f : bodt::kFaceVertex) {
+            const FaceKey face = FaceKey::of(q[f[0]], q[f[1]], q[f[2]]);
+            int32_t pair[2];
+            if (done || em.face_tets(face, pair) != 2) continue;
+            done = bodt::flip_23(em, face, rules, worst({pair[0], pair[1]}) + kGain);
+        }
+        flips += done;
+    }
+    return flips;
+}
+
+std::vector<bodt::TetShape> shapes_of(const TetMesh& m) {
+    std::vector<bodt::TetShape> out;
+    for (const Tet& q : m.tets) out.push_back(bodt::tet_shape({m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]}));
+    return out;
+}
+
+void test_flip_pass_plain(void**) {
+    // Three jittered boxes: the first seeds from 31 whose jitter inverts no tet.
+    int boxes = 0;
+    for (uint32_t seed = 31; boxes < 3 && seed < 60; ++seed) {
+        test_mesh tm{};
+        if (tm_make_cubes_sliding(&tm, 4, 1.0, nullptr, nullptr, nullptr, 0.35, 0.35, seed, nullptr, nullptr) != 0) continue;
+        ++boxes;
+        Input in = from_test_mesh(tm, nullptr);
+        tm_free(&tm);
+        mark_box_sides(in, 1.0);
+        const Case c = make_case(in);
+        bodt::TopologySettings s;
+        s.rules = loose_rules();
+        s.insert = false;
+        EditableMesh plain(c.mesh, c.classes);
+        const int32_t plain_flips = plain_flip_pass(plain, s.rules, s.flip_angle_deg);
+        assert_true(plain_flips > 10);
+        for (bool bounded : {false, true}) {
+            EditableMesh em(c.mesh, c.classes);
+            if (bounded) em.bound_sines(shapes_of(c.mesh));
+            const bodt::TopologyCounts counts = bodt::improve_topology(em, s);
+            print_message("seed %u%s: %d flips, plain %d\n", seed, bounded ? " (bounded)" : "", counts.flips, plain_flips);
+            assert_int_equal(counts.flips, plain_flips);
+            expect_same(written(em), written(plain), "flip pass against the plain one");
+        }
+    }
+    assert_int_equal(boxes, 3);
+}
+
+void test_sine_bounds(void**) {
+    test_mesh tm{};
+    assert_int_equal(tm_make_cubes_sliding(&tm, 3, 1.0, nullptr, nullptr, nullptr, 0.35, 0.35, 51, nullptr, nullptr), 0);
+    Input in = from_test_mesh(tm, nullptr);
+    tm_free(&tm);
+    const Case c = make_case(in);
+    const auto agrees = [](const EditableMesh& em, const char* what) {
+        int checked = 0;
+        for (int32_t t = 0; t < em.tet_capacity(); ++t) {
+            if (!em.alive(t)) continue;
+            const double sine = bodt::min_dihedral_sine(em.tet_points(t));
+            for (double x : {sine - 1e-12, sine, sine + 1e-12, sine - 1e-6, sine + 1e-6, 0.1, 0.5}) {
+                if (em.sine_at_least(t, x) != (sine >= x)) fail_msg("%s: tet %d, sine %.17g, threshold %.17g", what, t, sine, x);
+                ++checked;
+            }
+        }
+        assert_true(checked > 100);
+    };
+    EditableMesh plain(c.mesh, c.classes);
+    agrees(plain, "no bounds");
+    EditableMesh em(c.mesh, c.classes);
+    em.bound_sines(shapes_of(c.mesh));
+    agrees(em, "bounds");
+    // Moving an interior vertex most of the way to a neighbour flattens
+    // tets its bounds vouched for: they must be dropped.
+    int32_t v = -1;
+    for (int32_t i = 0; i < em.num_vertices() && v < 0; ++i)
+        if (em.vertex_class(i) == bodt::VertexClass::Interior) v = i;
+    assert_true(v >= 0);
+    std::vector<int32_t> near;
+    em.neighbors(v, near);
+    em.move_vertex(v, em.point(v) + 0.9 * (em.point(near.front()) - em.point(v)));
+    agrees(em, "bounds after a move");
+}
+
+void test_stamps(void**) {
+    const Case c = kuhn_box(2, 0.2, 61, true);
+    EditableMesh em(c.mesh, c.classes);
+    const auto stamps = [&em] {
+        std::vector<uint64_t> out;
+        for (int32_t v = 0; v < em.num_vertices(); ++v) out.push_back(em.stamp(v));
+        return out;
+    };
+    const auto advanced = [&](const std::vector<uint64_t>& before, uint64_t clock, std::set<int32_t> touched) {
+        const std::vector<uint64_t> now = stamps();
+        for (int32_t v = 0; v < em.num_vertices(); ++v) {
+            const bool moved_on = v >= static_cast<int32_t>(before.size()) || now[v] != before[v];
+            assert_int_equal(moved_on, touched.count(v) != 0);
+            if (moved_on) assert_true(now[v] > clock && now[v] <= em.clock());
+        }
+    };
+    std::vector<uint64_t> s0 = stamps();
+    uint64_t c0 = em.clock();
+    em.move_vertex(5, em.point(5));
+    advanced(s0, c0, {5});
+    const size_t mark = em.checkpoint();
+    s0 = stamps();
+    c0 = em.clock();
+    const Tet q = em.tet(0);
+    em.remove_tet(0);
+    advanced(s0, c0, {q[0], q[1], q[2], q[3]});
+    s0 = stamps();
+    c0 = em.clock();
+    em.rollback(mark);
+    advanced(s0, c0, {q[0], q[1], q[2], q[3]});
+    assert_true(em.alive(0));
+}
+
 // A Kuhn box with one interior vertex pulled most of the way to an interior
 // neighbour: short edges, collapsed by improve_topology.
 void test_collapse_pass(void**) {
@@ -1764,6 +1908,9 @@ int main(void) {
         cmocka_unit_test(test_insertion),
         cmocka_unit_test(test_flip_pass),
         cmocka_unit_test(test_collapse_pass),
+        cmocka_unit_test(test_flip_pass_plain),
+        cmocka_unit_test(test_sine_bounds),
+        cmocka_unit_test(test_stamps),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

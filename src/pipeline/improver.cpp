@@ -259,6 +259,7 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     // in the modes that keep the surface only interior ones do anyway.
     settings.relocate_old = bits & BODT_OP_SMOOTH;
     EditableMesh editable(mesh, classes(mesh, surfaces));
+    if (!shapes_.empty()) editable.bound_sines(shapes_);  // the sweep kept them up to date
     const TopologyCounts counts = improve_topology(editable, settings);
     if (!counts.changed()) return false;
     editable.write_to(mesh);

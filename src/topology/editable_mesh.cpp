@@ -15,6 +15,7 @@ namespace {
 
 constexpr int32_t kNoMarker = INT32_MIN;
 constexpr double kUnknownSine = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNoSineFloor = -std::numeric_limits<double>::infinity();
 
 // The two vertices of q other than a and b, ordered so that (a, b, c, d)
 // is an even permutation of q: the positions of a, b, c, d in q have an
@@ -112,6 +113,20 @@ TetPoints EditableMesh::tet_points(int32_t t) const {
 double EditableMesh::tet_sine(int32_t t) const {
     if (std::isnan(sine_[t])) sine_[t] = min_dihedral_sine(tet_points(t));
     return sine_[t];
+}
+
+void EditableMesh::bound_sines(const std::vector<TetShape>& shapes) {
+    // The kernel's cosines and min_dihedral_sine's products differ by
+    // round-off (about 1e-15 here); the margin keeps the bound below the
+    // sine for every tet whose sine it could pass over.
+    constexpr double kMargin = 1e-9;
+    sine_floor_.assign(tets_.size(), kNoSineFloor);
+    for (size_t t = 0; t < shapes.size() && t < sine_floor_.size(); ++t) {
+        const TetShape& s = shapes[t];
+        if (!(s.stretch > 0.0)) continue;
+        const double c = std::max(std::abs(s.cosines.of_min), std::abs(s.cosines.of_max));
+        sine_floor_[t] = std::sqrt(std::max(0.0, 1.0 - c * c)) - kMargin;
+    }
 }
 
 std::vector<int32_t> EditableMesh::tets_holding(std::initializer_list<int32_t> vs) const {
@@ -255,7 +270,10 @@ void EditableMesh::move_vertex(int32_t v, const Vec3& p) {
 void EditableMesh::place(int32_t v, const Vec3& p) {
     points_[v] = p;
     stamp_[v] = ++clock_;
-    for (int32_t t : vtets_[v]) sine_[t] = kUnknownSine;
+    for (int32_t t : vtets_[v]) {
+        sine_[t] = kUnknownSine;
+        if (!sine_floor_.empty()) sine_floor_[t] = kNoSineFloor;
+    }
 }
 
 void EditableMesh::set_parents(int32_t v, Parents parents) {
@@ -269,6 +287,7 @@ int32_t EditableMesh::add_tet(const Tet& q, int32_t region, int32_t origin) {
     tets_.push_back(q);
     removed_.push_back({-1, -1, -1, -1});
     sine_.push_back(kUnknownSine);
+    if (!sine_floor_.empty()) sine_floor_.push_back(kNoSineFloor);
     regions_.push_back(region);
     origin_.push_back(origin);
     attach(t);
@@ -339,12 +358,14 @@ void EditableMesh::rollback(size_t mark) {
                 tets_.pop_back();
                 removed_.pop_back();
                 sine_.pop_back();
+                if (!sine_floor_.empty()) sine_floor_.pop_back();
                 regions_.pop_back();
                 origin_.pop_back();
                 break;
             case Change::RemoveTet:
                 tets_[e.index] = removed_[e.index];
                 sine_[e.index] = kUnknownSine;
+                if (!sine_floor_.empty()) sine_floor_[e.index] = kNoSineFloor;
                 attach(e.index);
                 break;
             case Change::SetMarker:

@@ -60,6 +60,16 @@ public:
     // until one of its vertices moves: the flip and insertion passes ask
     // for the same tets many times.
     double tet_sine(int32_t t) const;
+    // tet_sine(t) >= s, computed only when the bound from bound_sines does
+    // not already tell.
+    bool sine_at_least(int32_t t, double s) const {
+        return (!sine_floor_.empty() && sine_floor_[t] >= s) || tet_sine(t) >= s;
+    }
+    // Lower bounds of the sines from the shapes of the tets this mesh was
+    // made from (shapes[t] of tet t, up to date with the points): the scans
+    // for bad tets pass over the good ones without the sine's roots.  A
+    // bound is dropped when a vertex of its tet moves.
+    void bound_sines(const std::vector<TetShape>& shapes);
 
     // The tets holding every vertex of `vs` (an edge, a face, a tet).
     std::vector<int32_t> tets_holding(std::initializer_list<int32_t> vs) const;
@@ -135,6 +145,7 @@ private:
     std::vector<Tet> removed_;  // the vertices of a removed tet, for rollback
     std::vector<int32_t> regions_, origin_;
     mutable std::vector<double> sine_;  // tet_sine, NaN: not known
+    std::vector<double> sine_floor_;    // bound_sines, -inf: none (empty: never bounded)
     std::vector<uint64_t> stamp_;       // per vertex, see stamp()
     uint64_t clock_ = 0;
     mutable std::vector<std::array<int32_t, 3>> ring_links_;  // edge_ring's scratch

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <unordered_map>
 
 namespace bodt {
 
@@ -41,16 +40,32 @@ void relocate(EditableMesh& mesh, int32_t v, const TopologySettings& s) {
 // The flips that failed earlier in a pass, each with the clock then and the
 // vertices whose points and tets the attempt read: while none of those
 // changed, the attempt would fail again.  Bad tets cluster, so most edges
-// and faces come up from several of them.
+// and faces come up from several of them.  A direct-mapped cache, not a
+// map: a record is overwritten by the next one hashing to its slot.  The
+// repeats come from neighbouring bad tets, which the pass visits close
+// together (tets are stored in curve order), so a fixed table catches most
+// of them without allocating; a map grew to millions of nodes on a large
+// mesh and cost more than the repeats it saved.
 class FailedFlips {
 public:
+    // About one slot per tet, 256 to 32768 of them.
+    explicit FailedFlips(int32_t tets) {
+        while (bits_ < 15 && (int64_t{1} << bits_) < tets) ++bits_;
+        slots_.resize(size_t{1} << bits_);
+    }
     // Edge (a, b), directed: edge removal's tests on a surface edge are
-    // made from a's side.
-    bool repeats(const EditableMesh& mesh, int32_t a, int32_t b) const { return repeats(mesh, edges_, directed(a, b)); }
-    bool repeats(const EditableMesh& mesh, const FaceKey& face) const { return repeats(mesh, faces_, face); }
+    // made from a's side.  Keyed as (a, b, -1); a face by its sorted vertices.
+    bool repeats(const EditableMesh& mesh, int32_t a, int32_t b) const { return repeats(mesh, FaceKey{{a, b, -1}}); }
+    bool repeats(const EditableMesh& mesh, const FaceKey& face) const {
+        const Slot& x = slots_[slot(face)];
+        if (!x.used || !(x.key == face)) return false;
+        for (int i = 0; i < x.n; ++i)
+            if (mesh.stamp(x.read[i]) > x.clock) return false;
+        return true;
+    }
     // An edge: its ring's vertices too when edge_ring built it.
     void record(const EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing* ring) {
-        Attempt& x = edges_[directed(a, b)] = {mesh.clock(), 0, {}};
+        Slot& x = fill(mesh, FaceKey{{a, b, -1}});
         x.read[x.n++] = a;
         x.read[x.n++] = b;
         if (ring)
@@ -58,7 +73,7 @@ public:
     }
     // A face: the apexes of its tets too (pair: those tets, or null).
     void record(const EditableMesh& mesh, const FaceKey& face, const int32_t* pair) {
-        Attempt& x = faces_[face] = {mesh.clock(), 0, {}};
+        Slot& x = fill(mesh, face);
         for (int32_t v : face.v) x.read[x.n++] = v;
         for (int k = 0; pair && k < 2; ++k)
             for (int32_t v : mesh.tet(pair[k]))
@@ -66,25 +81,24 @@ public:
     }
 
 private:
-    struct Attempt {
-        uint64_t clock;
-        int n;
+    struct Slot {
+        FaceKey key;
+        bool used = false;
+        int n = 0;
+        uint64_t clock = 0;
         std::array<int32_t, kMaxEdgeRing + 3> read;  // an edge and its ring (one more vertex when open)
     };
-    static uint64_t directed(int32_t a, int32_t b) {
-        return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
+    size_t slot(const FaceKey& k) const { return (FaceKeyHash()(k) * 0x9E3779B97F4A7C15ull) >> (64 - bits_); }
+    Slot& fill(const EditableMesh& mesh, const FaceKey& k) {
+        Slot& x = slots_[slot(k)];
+        x.key = k;
+        x.used = true;
+        x.n = 0;
+        x.clock = mesh.clock();
+        return x;
     }
-    template <class Map, class Key>
-    static bool repeats(const EditableMesh& mesh, const Map& map, const Key& key) {
-        const auto it = map.find(key);
-        if (it == map.end()) return false;
-        const Attempt& x = it->second;
-        for (int i = 0; i < x.n; ++i)
-            if (mesh.stamp(x.read[i]) > x.clock) return false;
-        return true;
-    }
-    std::unordered_map<uint64_t, Attempt> edges_;
-    std::unordered_map<FaceKey, Attempt, FaceKeyHash> faces_;
+    int bits_ = 8;
+    std::vector<Slot> slots_;
 };
 
 // Tries one edge removal or 2-3 flip among the edges and faces of t that
@@ -134,9 +148,9 @@ int32_t flip_pass(EditableMesh& mesh, const TopologyRules& rules, double flip_an
     int32_t flips = 0;
     const int32_t cap = 2 * mesh.tet_capacity();
     EdgeRing ring;
-    FailedFlips failed;
+    FailedFlips failed(mesh.tet_capacity());
     for (int32_t t = 0; t < mesh.tet_capacity() && flips < cap; ++t) {
-        if (!mesh.alive(t) || mesh.tet_sine(t) >= below) continue;
+        if (!mesh.alive(t) || mesh.sine_at_least(t, below)) continue;
         if (rules.delaunay && locally_delaunay(mesh, t)) continue;
         flips += flip_around(mesh, t, rules, ring, failed);
     }
@@ -174,9 +188,8 @@ std::vector<int32_t> insert_for(EditableMesh& mesh, int32_t t, const BadTet& bad
 std::vector<int32_t> bad_tets_by_quality(const EditableMesh& mesh, double bad_sine) {
     std::vector<std::pair<double, int32_t>> bad;
     for (int32_t t = 0; t < mesh.tet_capacity(); ++t) {
-        if (!mesh.alive(t)) continue;
-        const double s = mesh.tet_sine(t);
-        if (s < bad_sine) bad.push_back({s, t});
+        if (!mesh.alive(t) || mesh.sine_at_least(t, bad_sine)) continue;
+        bad.push_back({mesh.tet_sine(t), t});
     }
     std::sort(bad.begin(), bad.end());
     std::vector<int32_t> out;
