@@ -188,7 +188,7 @@ bool flip_23(EditableMesh& mesh, const FaceKey& face, const TopologyRules& rules
     const std::vector<int32_t> old{t[0], t[1]};
     const TetLimits limits = limits_for(mesh, old, rules, must_exceed);
     for (const TetPoints& shape : p)
-        if (!acceptable_tet(shape, limits)) return false;
+        if (!acceptable_shape(shape, limits)) return false;
     NewTets fresh;
     for (int k = 0; k < 3; ++k) fresh.push_back({f[k], f[(k + 1) % 3], d, e});
     if (!fits_cavity(mesh, old, fresh)) return false;

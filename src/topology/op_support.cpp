@@ -26,7 +26,10 @@ TetLimits limits_for(const EditableMesh& mesh, const std::vector<int32_t>& repla
 }
 
 bool acceptable_tet(const TetPoints& p, const TetLimits& limits) {
-    if (!(min_dihedral_sine(p) > limits.must_exceed)) return false;
+    return min_dihedral_sine(p) > limits.must_exceed && acceptable_shape(p, limits);
+}
+
+bool acceptable_shape(const TetPoints& p, const TetLimits& limits) {
     const TetShape shape = tet_shape(p);
     return shape.stretch >= limits.stretch_floor && (!limits.keep_range || within(shape.cosines, limits.range));
 }

@@ -26,6 +26,8 @@ double sine_floor(const TopologyRules& rules, double must_exceed);
 TetLimits limits_for(const EditableMesh& mesh, const std::vector<int32_t>& replaced, const TopologyRules& rules,
                      double must_exceed);
 bool acceptable_tet(const TetPoints& p, const TetLimits& limits);
+// acceptable_tet without the sine test, for a caller that made it already.
+bool acceptable_shape(const TetPoints& p, const TetLimits& limits);
 
 // The tets touching any of `vs`, each once, ascending.
 std::vector<int32_t> tets_touching(const EditableMesh& mesh, const std::vector<int32_t>& vs);

@@ -56,8 +56,6 @@ std::vector<std::array<int32_t, 2>> all_edges(const EditableMesh& mesh) {
     return out;
 }
 
-bool is_edge(const EditableMesh& mesh, int32_t a, int32_t b) { return !mesh.tets_holding({a, b}).empty(); }
-
 // The surface faces on edge (a, b): their third vertices.
 std::vector<int32_t> surface_opposites(const EditableMesh& mesh, int32_t a, int32_t b) {
     std::vector<int32_t> out;
@@ -443,7 +441,7 @@ int32_t PhasedTopology::remove_degenerate() {
             // The two crossing edges split, the new short edge collapsed.
             const int32_t m1 = split_onto_shape(q[kind.edge[0]], q[kind.edge[1]], true);
             const int32_t m2 = m1 < 0 ? -1 : split_onto_shape(q[kind.edge2[0]], q[kind.edge2[1]], true);
-            if (m2 >= 0 && is_edge(mesh_, m1, m2)) kept = collapse_by_rules(m1, m2);
+            if (m2 >= 0 && mesh_.has_edge(m1, m2)) kept = collapse_by_rules(m1, m2);
         } else if (kind.kind == BadTetKind::Cap || kind.kind == BadTetKind::Spade) {
             // The edge between the largest and the smallest face is split;
             // the smallest face's third vertex and the new one collapse.
@@ -458,7 +456,7 @@ int32_t PhasedTopology::remove_degenerate() {
                     if (i != large && i != small) e[k++] = i;
                 const int32_t apex = q[large];  // in the smallest face, off the edge
                 const int32_t m = split_onto_shape(q[e[0]], q[e[1]], true);
-                if (m >= 0 && is_edge(mesh_, m, apex)) kept = collapse_by_rules(m, apex);
+                if (m >= 0 && mesh_.has_edge(m, apex)) kept = collapse_by_rules(m, apex);
             }
         }
         std::vector<int32_t> after_region;
@@ -485,7 +483,7 @@ void PhasedTopology::recover(const DensityGrid* density, PhasedTopologyCounts& c
     // Geometric accuracy: surface edges of a cylinder too far from it.
     if (settings_.split) {
         for (const auto& [a, b] : surface_edges(mesh_)) {
-            if (!is_edge(mesh_, a, b)) continue;
+            if (!mesh_.has_edge(a, b)) continue;
             const Vec3 mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
             double limit = std::numeric_limits<double>::infinity();
             for (int32_t c : surface_opposites(mesh_, a, b)) {
@@ -506,7 +504,7 @@ void PhasedTopology::recover(const DensityGrid* density, PhasedTopologyCounts& c
     }
     // Density: split sparse edges, collapse dense ones.
     for (const auto& [a, b] : all_edges(mesh_)) {
-        if (mesh_.tets_of(a).empty() || mesh_.tets_of(b).empty() || !is_edge(mesh_, a, b)) continue;
+        if (mesh_.tets_of(a).empty() || mesh_.tets_of(b).empty() || !mesh_.has_edge(a, b)) continue;
         const Vec3 mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
         const double target = density->at(mid);
         if (!(target > 0.0)) continue;
@@ -523,12 +521,12 @@ void PhasedTopology::recover(const DensityGrid* density, PhasedTopologyCounts& c
 int32_t PhasedTopology::flip_surface() {
     int32_t flips = 0;
     for (const auto& [a, b] : surface_edges(mesh_)) {
-        if (mesh_.is_feature_edge(a, b) || !is_edge(mesh_, a, b)) continue;
+        if (mesh_.is_feature_edge(a, b) || !mesh_.has_edge(a, b)) continue;
         const std::vector<int32_t> opp = surface_opposites(mesh_, a, b);
         if (opp.size() != 2) continue;
         const int32_t c = opp[0], d = opp[1];
         if (!edge_not_delaunay(mesh_.point(a), mesh_.point(b), mesh_.point(c), mesh_.point(d))) continue;
-        if (is_edge(mesh_, c, d)) continue;  // the flipped edge exists already
+        if (mesh_.has_edge(c, d)) continue;  // the flipped edge exists already
         const std::vector<int32_t> region = tets_touching(mesh_, {a, b, c, d});
         const double before = worst_sine(mesh_, region);
         const size_t mark = mesh_.checkpoint();

@@ -320,6 +320,7 @@ int32_t all_boundary_pass(EditableMesh& mesh, const TopologySettings& s, const T
     }
     std::sort(poor.begin(), poor.end());
     int32_t swaps = 0;
+    EdgeRing ring;
     for (const auto& entry : poor) {
         const int32_t t = entry.second;
         if (!mesh.alive(t)) continue;
@@ -334,9 +335,10 @@ int32_t all_boundary_pass(EditableMesh& mesh, const TopologySettings& s, const T
         for (const auto& e : kEdgeVertex) {
             if (done) break;
             const int32_t a = q[e[0]], b = q[e[1]];
-            const size_t ring = mesh.tets_holding({a, b}).size();
-            if (ring < 3 || ring > static_cast<size_t>(kMaxEdgeRing)) continue;
-            done = swap([&] { return remove_edge(mesh, a, b, loose, 0.0); });
+            if (!mesh.edge_ring(a, b, ring)) continue;
+            const size_t k = ring.tets.size();
+            if (k < 3 || k > static_cast<size_t>(kMaxEdgeRing)) continue;
+            done = swap([&] { return remove_edge(mesh, a, b, ring, loose, 0.0); });
         }
         for (const auto& f : kFaceVertex) {
             if (done) break;
