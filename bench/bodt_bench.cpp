@@ -297,7 +297,7 @@ void usage(FILE* f) {
                  "  --no-hausdorff       skip the Hausdorff distance (null in the output)\n"
                  "  --cases REGEX        only cases whose name matches (ECMAScript regex, searched)\n"
                  "  --surface FILE       add a closed .off/.stl surface (TetGen -pQ and -pqQ)\n"
-                 "  --mesh FILE          add a tet mesh file (.mesh, .node/.ele, optionally .gz)\n"
+                 "  --mesh FILE          add a tet mesh file (.mesh, .node/.ele, .vtk, .vtu, .msh, optionally .gz)\n"
                  "  --timeout SECONDS    per case and variant (default 900, with --scale 3600; 0 = none)\n"
                  "  --peer-timeout SECONDS  a peer's process is killed after this (default 300, at most\n"
                  "                       --timeout - 30; 0 = --timeout - 30)\n"

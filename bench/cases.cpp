@@ -683,11 +683,8 @@ std::vector<Case> make_cases(const CaseOptions& opt, std::vector<std::string>& n
             for (const auto& f : list_dir(dir)) {
                 const std::string p = dir + "/" + f;
                 if (!is_file(p)) continue;
-                if (ends_with(f, ".mesh") || ends_with(f, ".mesh.gz") || ends_with(f, ".ele") ||
-                    ends_with(f, ".ele.gz"))
-                    files.push_back(p);
-                else if (ends_with(f, ".vtk") || ends_with(f, ".vtk.gz") || ends_with(f, ".vtu"))
-                    notes.push_back("skipped " + f + ": VTK is not a format of bodt_mesh_read (.mesh, .node/.ele)");
+                for (const char* ext : {".mesh", ".ele", ".vtk", ".vtu", ".msh"})
+                    if (ends_with(f, ext) || ends_with(f, std::string(ext) + ".gz")) files.push_back(p);
             }
         }
     }
@@ -753,8 +750,7 @@ std::vector<Case> make_cases(const CaseOptions& opt, std::vector<std::string>& n
     }
 
     // (e) jittered Kuhn boxes.
-    std::vector<int> boxes = {12};  // 10368 tets
-    if (opt.large) boxes.push_back(26);  // 105456 tets
+    const std::vector<int> boxes = opt.large ? std::vector<int>{12, 26} : std::vector<int>{12};  // 10368, 105456 tets
     for (int n : boxes) cases.push_back(box_case(n, 1.0));
     return cases;
 }

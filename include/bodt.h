@@ -552,7 +552,10 @@ typedef struct bodt_step_report {
     size_t size;            /* set to sizeof(bodt_step_report) */
     int32_t step;           /* 1 for the first step on this handle, ...  */
     int32_t vertices_moved;
-    int32_t moves_rejected; /* vertices whose every trial move was refused */
+    /* Vertices whose every trial move was refused.  The B-ODT sweeps do
+     * not try again an inner vertex whose move was refused while nothing
+     * around it has moved since (the verdict is known): it is not counted. */
+    int32_t moves_rejected;
     int32_t moves_shortened;/* vertices moved by a halved step            */
     /* vertices left in place because their local problem has no minimum
      * (B-ODT: 4EF <= G^2 or E <= 0 in eq. 10, A <= 0 in Algorithm 3) */
@@ -725,7 +728,12 @@ enum bodt_format {
     /* .inp, Abaqus / CalculiX (write only): C3D4 elements, an element set
      * per region, a node set of the fixed vertices and one per non-zero
      * vertex ref, an element surface per face marker. */
-    BODT_FORMAT_ABAQUS = 9
+    BODT_FORMAT_ABAQUS = 9,
+    /* .vtk, VTK legacy unstructured grid, ASCII or binary, versions up to
+     * 5.1 (VTK, ParaView, Mesquite, meshio): the same cells and arrays as
+     * .vtu; float-typed flags (Mesquite's "fixed") are read too.  Writes
+     * version 4.2 binary with the per-tet quality of .vtu. */
+    BODT_FORMAT_VTK = 10
 };
 
 /*

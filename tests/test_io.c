@@ -2,15 +2,16 @@
  * test_io: mesh files through libbodt.so.  Round trips of Medit .mesh and
  * TetGen .node/.ele/.face with regions, face markers, fixed vertices,
  * corners, vertex refs and feature edges with refs, and of every other
- * readable format (.meshb, .msh 2.2 / 4.1 ASCII / binary, .vtu): what a
- * format carries comes back exactly, what it does not (bodt.h, enum
- * bodt_format) comes back empty; VTU quality fields, Abaqus .inp written
- * (with a node set per vertex ref), not read; hand-written TetGen files
+ * readable format (.meshb, .msh 2.2 / 4.1 ASCII / binary, .vtu, .vtk): what
+ * a format carries comes back exactly, what it does not (bodt.h, enum
+ * bodt_format) comes back empty; VTU and VTK quality fields (binary VTK
+ * 4.2), Abaqus .inp written (with a node set per vertex ref), not read; a
+ * hand-written VTK file as Mesquite writes it; hand-written TetGen files
  * numbered from 0 and from 1, with and without node markers; a TetGen file
  * in Stellar's negative orientation; hand-written Medit files whose every
  * Edges entry is a feature edge (Ridges checked, adding nothing); malformed
- * files, each refused with BODT_ERR_IO and a message naming the file and
- * line; unknown extensions; unwritable paths.
+ * files (Medit, TetGen, VTK), each refused with BODT_ERR_IO and a message
+ * naming the file and line; unknown extensions; unwritable paths.
  *
  * Files are written under BODT_TEST_IO_DIR (in the build tree); the
  * malformed ones are written here from string literals.
@@ -300,8 +301,9 @@ static void test_medit_roundtrip(void **state) {
 
 /* Every readable format, chosen explicitly (whatever the extension) and by
  * extension: the decorated box comes back the same, with what the format
- * carries (bodt.h): Medit and VTU everything; TetGen vertex refs only; Gmsh
- * fixed vertices and feature edges with refs, no vertex refs or corners. */
+ * carries (bodt.h): Medit, VTU and VTK everything; TetGen vertex refs only;
+ * Gmsh fixed vertices and feature edges with refs, no vertex refs or
+ * corners. */
 static void test_format_roundtrips(void **state) {
     (void)state;
     static const struct {
@@ -317,6 +319,7 @@ static void test_format_roundtrips(void **state) {
         {BODT_FORMAT_GMSH22, "f22.msh", KEEPS_FIXED | KEEPS_EDGES},
         {BODT_FORMAT_GMSH22_BINARY, "fb22.msh", KEEPS_FIXED | KEEPS_EDGES},
         {BODT_FORMAT_VTU, "f.vtu", KEEPS_ALL},
+        {BODT_FORMAT_VTK, "f.vtk", KEEPS_ALL},
     };
     test_mesh m;
     bodt_mesh *h = decorated_box(&m);
@@ -339,8 +342,23 @@ static void test_format_roundtrips(void **state) {
     tm_free(&m);
 }
 
-/* VTU files carry the per-tet quality for viewers; Abaqus files are written
- * (C3D4, an element set per region, a surface per marker), not read. */
+/* Whether the file at `path` holds `needle` (binary data too). */
+static int file_holds(const char *path, const char *needle) {
+    FILE *f = fopen(path, "rb");
+    if (!f) fail_msg("cannot read %s: %s", path, strerror(errno));
+    char buf[1 << 16];
+    const size_t size = fread(buf, 1, sizeof buf, f), n = strlen(needle);
+    const int more = fgetc(f) != EOF;
+    fclose(f);
+    if (more) fail_msg("%s is over %zu bytes", path, sizeof buf);
+    for (size_t k = 0; k + n <= size; ++k)
+        if (memcmp(buf + k, needle, n) == 0) return 1;
+    return 0;
+}
+
+/* VTU and VTK files carry the per-tet quality for viewers; Abaqus files are
+ * written (C3D4, an element set per region, a surface per marker), not
+ * read. */
 static void test_vtu_fields_and_abaqus(void **state) {
     (void)state;
     test_mesh m;
@@ -351,6 +369,22 @@ static void test_vtu_fields_and_abaqus(void **state) {
     const char *names[] = {"\"region\"", "\"min_dihedral\"", "\"max_dihedral\"", "\"stretch\"", "\"volume\""};
     for (size_t k = 0; k < sizeof names / sizeof names[0]; ++k) assert_contains(text, names[k]);
     free(text);
+    /* .vtk: binary 4.2, the same arrays as SCALARS (a binary file: no strstr) */
+    const char *vtk = path_of("fields.vtk");
+    assert_int_equal(bodt_mesh_write(h, vtk), BODT_OK);
+    const char *vtk_lines[] = {"# vtk DataFile Version 4.2\n",
+                               "\nBINARY\n",
+                               "\nSCALARS region int",
+                               "\nSCALARS marker int",
+                               "\nSCALARS min_dihedral double",
+                               "\nSCALARS max_dihedral double",
+                               "\nSCALARS stretch double",
+                               "\nSCALARS volume double",
+                               "\nSCALARS fixed unsigned_char",
+                               "\nSCALARS corner unsigned_char",
+                               "\nSCALARS ref int"};
+    for (size_t k = 0; k < sizeof vtk_lines / sizeof vtk_lines[0]; ++k)
+        if (!file_holds(vtk, vtk_lines[k])) fail_msg("%s does not hold '%s'", vtk, vtk_lines[k]);
 
     const char *inp = path_of("box.inp");
     assert_int_equal(bodt_mesh_write(h, inp), BODT_OK);
@@ -954,10 +988,56 @@ static void test_medit_bad_triangles(void **state) {
                  bodt_status_string(st), bodt_mesh_last_error(NULL));
 }
 
+/* A .vtk file as Mesquite writes it (ASCII 2.0, its float `fixed` flags are
+ * the fixed vertices), by extension and explicitly; a malformed one refused
+ * with the file and line. */
+static void test_vtk_handwritten(void **state) {
+    (void)state;
+    static const char *mesquite = "# vtk DataFile Version 2.0\n"
+                                  "Mesquite Mesh\n"
+                                  "ASCII\n"
+                                  "DATASET UNSTRUCTURED_GRID\n"
+                                  "POINTS 5 float\n"
+                                  "0 0 0\n1 0 0\n0 1 0\n0 0 1\n0.1 0.2 -1\n"
+                                  "CELLS 2 10\n"
+                                  "4 0 1 2 3\n4 0 2 1 4\n"
+                                  "CELL_TYPES 2\n10\n10\n\n"
+                                  "POINT_DATA 5\n"
+                                  "SCALARS fixed float\nLOOKUP_TABLE default\n1\n0\n0\n0\n1\n"
+                                  "SCALARS GLOBAL_ID int 1\nLOOKUP_TABLE default\n0 1 2 3 4\n";
+    const char *p = path_of("mesquite.vtk");
+    write_text(p, mesquite);
+    for (int explicit_format = 0; explicit_format < 2; ++explicit_format) {
+        bodt_mesh *h = NULL;
+        if (explicit_format) {
+            const char *odd = path_of("mesquite_vtk.txt");
+            write_text(odd, mesquite);
+            assert_int_equal(bodt_mesh_read_format(odd, BODT_FORMAT_VTK, 0, &h), BODT_OK);
+        } else {
+            h = read_ok(p, 0);
+        }
+        int32_t nv = 0, nt = 0;
+        assert_int_equal(bodt_mesh_get_counts(h, &nv, &nt, NULL), BODT_OK);
+        assert_int_equal(nv, 5);
+        assert_int_equal(nt, 2);
+        int32_t *fixed = vertex_values(h, bodt_mesh_get_fixed_vertices);
+        const int32_t expect[5] = {1, 0, 0, 0, 1};
+        assert_memory_equal(fixed, expect, sizeof expect);
+        free(fixed);
+        bodt_mesh_destroy(h);
+    }
+    char bad[1024];
+    snprintf(bad, sizeof bad, "%s", mesquite);
+    memcpy(strstr(bad, "POINTS 5 float"), "POINTS x float", 14);
+    p = path_of("bad_points.vtk");
+    write_text(p, bad);
+    expect_read_failure(p, BODT_ERR_IO, p, 5, "'x'");
+}
+
 static void test_unsupported_and_bad_arguments(void **state) {
     (void)state;
-    const char *p = path_of("mesh.vtk");
-    write_text(p, "# vtk DataFile Version 2.0\n");
+    const char *p = path_of("mesh.vtp"); /* VTK XML PolyData: not a format of bodt.h */
+    write_text(p, "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\"/>\n");
     expect_read_failure(p, BODT_ERR_UNSUPPORTED, p, 0, NULL);
     expect_read_failure(path_of("noextension"), BODT_ERR_UNSUPPORTED, path_of("noextension"), 0, NULL);
     bodt_mesh *h = (bodt_mesh *)&h;
@@ -969,11 +1049,11 @@ static void test_unsupported_and_bad_arguments(void **state) {
     test_mesh m;
     assert_int_equal(tm_make_box(&m, 1, 0.0, 1), 0);
     assert_int_equal(bodt_mesh_create(m.nverts, m.xyz, m.ntets, m.tets, 0, &h), BODT_OK);
-    const char *vtk = path_of("out.vtk");
-    remove(vtk);
-    assert_int_equal(bodt_mesh_write(h, vtk), BODT_ERR_UNSUPPORTED);
-    assert_contains(bodt_mesh_last_error(h), vtk);
-    assert_false(file_exists(vtk));
+    const char *vtp = path_of("out.vtp");
+    remove(vtp);
+    assert_int_equal(bodt_mesh_write(h, vtp), BODT_ERR_UNSUPPORTED);
+    assert_contains(bodt_mesh_last_error(h), vtp);
+    assert_false(file_exists(vtp));
     assert_int_equal(bodt_mesh_write(h, NULL), BODT_ERR_INVALID_ARGUMENT);
     bodt_mesh_destroy(h);
     tm_free(&m);
@@ -1033,6 +1113,7 @@ int main(void) {
         cmocka_unit_test(test_tetgen_handwritten_bases),
         cmocka_unit_test(test_tetgen_negative_orientation),
         cmocka_unit_test(test_medit_handwritten),
+        cmocka_unit_test(test_vtk_handwritten),
         cmocka_unit_test(test_read_one_based),
         cmocka_unit_test(test_medit_ridges),
         cmocka_unit_test(test_read_inverted_flag),

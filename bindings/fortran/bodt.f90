@@ -94,7 +94,7 @@ module bodt
   integer(c_int), parameter, public :: &
     BODT_FORMAT_AUTO = 0, BODT_FORMAT_MEDIT = 1, BODT_FORMAT_MEDIT_BINARY = 2, BODT_FORMAT_TETGEN = 3, &
     BODT_FORMAT_GMSH = 4, BODT_FORMAT_GMSH_BINARY = 5, BODT_FORMAT_GMSH22 = 6, BODT_FORMAT_GMSH22_BINARY = 7, &
-    BODT_FORMAT_VTU = 8, BODT_FORMAT_ABAQUS = 9
+    BODT_FORMAT_VTU = 8, BODT_FORMAT_ABAQUS = 9, BODT_FORMAT_VTK = 10
 
   ! The structs of bodt.h, field for field.
   type, bind(c), public :: bodt_quality

@@ -650,7 +650,7 @@ int bodt_mesh_write_format(const bodt_mesh* mesh, const char* path, int format) 
         require(path != nullptr, "path is NULL");
         const bodt::MeshFormat f = bodt::format_from_code(format, path);
         bodt::MeshData data = to_mesh_data(mesh);
-        if (f == bodt::MeshFormat::Vtu) add_quality_fields(mesh->mesh, data);
+        if (f == bodt::MeshFormat::Vtu || f == bodt::MeshFormat::Vtk) add_quality_fields(mesh->mesh, data);
         bodt::write_mesh_file(path, data, f);
     });
 }

@@ -105,6 +105,7 @@ constexpr Named kFormats[] = {{"mesh", BODT_FORMAT_MEDIT},
                               {"gmsh22", BODT_FORMAT_GMSH22},
                               {"gmsh22-binary", BODT_FORMAT_GMSH22_BINARY},
                               {"vtu", BODT_FORMAT_VTU},
+                              {"vtk", BODT_FORMAT_VTK},
                               {"abaqus", BODT_FORMAT_ABAQUS}};
 
 template <size_t N>

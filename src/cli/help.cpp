@@ -32,6 +32,9 @@ const char* const kFiles =
     "          surfaces face markers.\n"
     "  .vtu    VTK XML unstructured grid (vtu), for ParaView; a write adds per-tet\n"
     "          region, min and max dihedral angle, stretch and volume.\n"
+    "  .vtk    VTK legacy unstructured grid (vtk), ASCII or binary, up to\n"
+    "          version 5.1, as VTK, Mesquite and meshio write it; the same data\n"
+    "          as .vtu.  Written as 4.2 binary.\n"
     "  .inp    Abaqus / CalculiX (abaqus), written only: C3D4 elements, an\n"
     "          element set per region, a node set of the fixed vertices, a\n"
     "          surface per face marker.\n"
@@ -160,7 +163,7 @@ const Page kPages[] = {
      "         density and geometric errors are printed before and after.\n"
      "  --format NAME\n"
      "         Write OUT in this format whatever its extension: mesh, meshb,\n"
-     "         tetgen, gmsh, gmsh-binary, gmsh22, gmsh22-binary, vtu, abaqus.\n",
+     "         tetgen, gmsh, gmsh-binary, gmsh22, gmsh22-binary, vtu, vtk, abaqus.\n",
      "  bodt improve part.mesh part_better.mesh\n"
      "  bodt improve part.msh part_better.vtu --iterations 50 --ops smooth,flip\n"
      "  bodt improve part.mesh out.mesh --mode opt-weighted --param weight_c=0.8\n"
@@ -220,7 +223,7 @@ const Page kPages[] = {
      "format holds them (TetGen files have no fixed vertices).\n",
      "  --format NAME\n"
      "         mesh, meshb, tetgen, gmsh (4.1 ASCII), gmsh-binary (4.1 binary),\n"
-     "         gmsh22 (2.2 ASCII), gmsh22-binary (2.2 binary), vtu, abaqus.\n",
+     "         gmsh22 (2.2 ASCII), gmsh22-binary (2.2 binary), vtu, vtk, abaqus.\n",
      "  bodt convert part.mesh part.msh\n"
      "  bodt convert part.msh part.node\n"
      "  bodt convert part.mesh part.msh --format gmsh22\n"},

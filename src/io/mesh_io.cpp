@@ -3,6 +3,7 @@
 #include "io/abaqus.hpp"
 #include "io/gmsh.hpp"
 #include "io/medit_binary.hpp"
+#include "io/vtk_legacy.hpp"
 #include "io/vtu.hpp"
 
 #include "bodt.h"
@@ -34,15 +35,16 @@ MeshFormat format_from_path(const std::string& path) {
     if (ext == "node" || ext == "ele") return MeshFormat::TetGen;
     if (ext == "msh") return MeshFormat::Gmsh;
     if (ext == "vtu") return MeshFormat::Vtu;
+    if (ext == "vtk") return MeshFormat::Vtk;
     if (ext == "inp") return MeshFormat::Abaqus;
     throw Error(BODT_ERR_UNSUPPORTED, "'" + path +
-                                          "': unknown mesh format (expected .mesh, .meshb, .node, .ele, .msh, .vtu "
-                                          "or .inp, or give the format)");
+                                          "': unknown mesh format (expected .mesh, .meshb, .node, .ele, .msh, .vtu, "
+                                          ".vtk or .inp, or give the format)");
 }
 
 MeshFormat format_from_code(int code, const std::string& path) {
     if (code == BODT_FORMAT_AUTO) return format_from_path(path);
-    if (code < BODT_FORMAT_MEDIT || code > BODT_FORMAT_ABAQUS)
+    if (code < BODT_FORMAT_MEDIT || code > BODT_FORMAT_VTK)
         throw Error(BODT_ERR_INVALID_ARGUMENT, "unknown format " + std::to_string(code));
     return static_cast<MeshFormat>(code);
 }
@@ -57,6 +59,7 @@ MeshData read_mesh_file(const std::string& path, MeshFormat format) {
         case MeshFormat::Gmsh22:
         case MeshFormat::Gmsh22Binary: return read_gmsh(path);
         case MeshFormat::Vtu: return read_vtu(path);
+        case MeshFormat::Vtk: return read_vtk(path);
         case MeshFormat::Abaqus: break;
     }
     throw Error(BODT_ERR_UNSUPPORTED, "'" + path + "': Abaqus .inp files are written, not read");
@@ -72,6 +75,7 @@ void write_mesh_file(const std::string& path, const MeshData& data, MeshFormat f
         case MeshFormat::Gmsh22: return write_gmsh(path, data, 22, false);
         case MeshFormat::Gmsh22Binary: return write_gmsh(path, data, 22, true);
         case MeshFormat::Vtu: return write_vtu(path, data);
+        case MeshFormat::Vtk: return write_vtk(path, data);
         case MeshFormat::Abaqus: return write_abaqus(path, data);
     }
 }

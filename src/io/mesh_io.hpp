@@ -43,10 +43,11 @@ enum class MeshFormat {
     Gmsh22 = 6,        // writes 2.2 ASCII
     Gmsh22Binary = 7,  // writes 2.2 binary
     Vtu = 8,           // .vtu (VTK XML unstructured grid)
-    Abaqus = 9         // .inp (write only)
+    Abaqus = 9,        // .inp (write only)
+    Vtk = 10           // .vtk (VTK legacy)
 };
 
-// By extension: .mesh, .meshb, .node/.ele, .msh, .vtu, .inp.  Throws
+// By extension: .mesh, .meshb, .node/.ele, .msh, .vtu, .vtk, .inp.  Throws
 // Error(BODT_ERR_UNSUPPORTED) for anything else.
 MeshFormat format_from_path(const std::string& path);
 // An enum bodt_format value; BODT_FORMAT_AUTO goes by the path.  Throws

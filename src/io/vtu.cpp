@@ -8,6 +8,7 @@
 #include "io/vtu.hpp"
 
 #include "io/output_file.hpp"
+#include "io/vtk_cells.hpp"
 
 #include "bodt.h"
 #include "common/error.hpp"
@@ -21,7 +22,6 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
-#include <set>
 #include <sstream>
 #include <string_view>
 #include <utility>
@@ -30,8 +30,6 @@
 namespace bodt {
 
 namespace {
-
-constexpr uint8_t kVtkVertex = 1, kVtkLine = 3, kVtkTriangle = 5, kVtkTetra = 10;
 
 // ------------------------------------------------------------------ XML
 
@@ -534,34 +532,6 @@ int64_t count_attr(const XmlDocument& doc, const XmlElement& e, const char* key,
     return v;
 }
 
-const char* cell_type_name(int64_t type) {
-    switch (type) {
-        case 1: return "vertex";
-        case 2: return "poly-vertex";
-        case 3: return "line";
-        case 4: return "poly-line";
-        case 5: return "triangle";
-        case 6: return "triangle strip";
-        case 7: return "polygon";
-        case 8: return "pixel";
-        case 9: return "quad";
-        case 10: return "tetra";
-        case 11: return "voxel";
-        case 12: return "hexahedron";
-        case 13: return "wedge";
-        case 14: return "pyramid";
-        case 15: return "pentagonal prism";
-        case 16: return "hexagonal prism";
-        case 21: return "quadratic edge";
-        case 22: return "quadratic triangle";
-        case 23: return "quadratic quad";
-        case 24: return "quadratic tetra";
-        case 25: return "quadratic hexahedron";
-        case 42: return "polyhedron";
-        default: return nullptr;
-    }
-}
-
 std::string read_file_text(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(BODT_ERR_IO, "cannot open '" + path + "': " + std::strerror(errno));
@@ -735,8 +705,8 @@ MeshData read_vtu(const std::string& path) {
         return found;
     };
 
-    MeshData d;
-    d.base = 0;
+    VtkGrid vtk;
+    vtk.points = npoints;
 
     // Points.
     const XmlElement* pe = find_array(*points, nullptr);
@@ -751,7 +721,7 @@ MeshData read_vtu(const std::string& path) {
         if (!std::isfinite(pts.f[k]))
             doc.fail(*pe, "coordinate " + std::to_string(k % 3) + " of point " + std::to_string(k / 3) +
                               " is not finite");
-    d.xyz = pts.f;
+    vtk.xyz = pts.f;
 
     // Cells.
     for (const char* poly : {"faces", "faceoffsets"})
@@ -765,35 +735,15 @@ MeshData read_vtu(const std::string& path) {
         if (a.components != 1) doc.fail(*e, std::string("the ") + name + " must have 1 component");
         return a;
     };
-    const Array conn = cell_array("connectivity");
-    const Array offsets = cell_array("offsets");
-    const Array types = cell_array("types");
+    Array conn = cell_array("connectivity");
+    Array offsets = cell_array("offsets");
+    Array types = cell_array("types");
     if (static_cast<int64_t>(types.i.size()) != ncells)
         doc.fail(*types.elem, "NumberOfCells is " + std::to_string(ncells) + " but there are " +
                                   std::to_string(types.i.size()) + " types");
     if (static_cast<int64_t>(offsets.i.size()) != ncells)
         doc.fail(*offsets.elem, "NumberOfCells is " + std::to_string(ncells) + " but there are " +
                                     std::to_string(offsets.i.size()) + " offsets");
-    const int64_t nconn = static_cast<int64_t>(conn.i.size());
-    for (int64_t c = 0; c < ncells; ++c) {
-        const int64_t start = c == 0 ? 0 : offsets.i[c - 1];
-        const int64_t end = offsets.i[c];
-        if (end <= start)
-            doc.fail(*offsets.elem, "the offsets are not increasing: cell " + std::to_string(c) + " ends at " +
-                                        std::to_string(end) + ", after " + std::to_string(start));
-        if (end > nconn)
-            doc.fail(*offsets.elem, "offset " + std::to_string(end) + " of cell " + std::to_string(c) +
-                                        " is beyond the " + std::to_string(nconn) + " connectivity entries");
-    }
-    if (ncells > 0 && offsets.i.back() != nconn)
-        doc.fail(*offsets.elem, "the offsets use " + std::to_string(offsets.i.back()) + " of the " +
-                                    std::to_string(nconn) + " connectivity entries");
-    if (ncells == 0 && nconn != 0) doc.fail(*conn.elem, "connectivity entries but no cells");
-    for (int64_t k = 0; k < nconn; ++k)
-        if (conn.i[k] < 0 || conn.i[k] >= npoints)
-            doc.fail(*conn.elem, "connectivity entry " + std::to_string(k) + " is " + std::to_string(conn.i[k]) +
-                                     ", out of range for " + std::to_string(npoints) + " points");
-
     // Optional integer cell / point arrays.
     auto optional_ints = [&](const XmlElement* parent, const char* name, int64_t count, const char* what) {
         std::vector<int64_t> values;
@@ -812,90 +762,29 @@ MeshData read_vtu(const std::string& path) {
                                  " does not fit in 32 bits");
         return std::move(a.i);
     };
-    const std::vector<int64_t> region = optional_ints(cell_data, "region", ncells, "cells");
-    const std::vector<int64_t> marker = optional_ints(cell_data, "marker", ncells, "cells");
-    const std::vector<int64_t> fixed = optional_ints(point_data, "fixed", npoints, "points");
-    const std::vector<int64_t> corner = optional_ints(point_data, "corner", npoints, "points");
-    const std::vector<int64_t> ref = optional_ints(point_data, "ref", npoints, "points");
-
-    for (int64_t c = 0; c < ncells; ++c) {
-        const int64_t t = types.i[c];
-        const int64_t start = c == 0 ? 0 : offsets.i[c - 1];
-        const int64_t n = offsets.i[c] - start;
-        int64_t expect;
-        switch (t) {
-            case kVtkTetra: expect = 4; break;
-            case kVtkTriangle: expect = 3; break;
-            case kVtkLine: expect = 2; break;
-            case kVtkVertex: expect = 1; break;
-            default: {
-                const char* tn = cell_type_name(t);
-                doc.fail(*types.elem, "cell " + std::to_string(c) + " has VTK type " + std::to_string(t) +
-                                          (tn ? std::string(" (") + tn + ")" : std::string()) +
-                                          ": only tetrahedra (10), with triangles (5), lines (3) and "
-                                          "vertices (1), are supported");
-            }
-        }
-        if (n != expect)
-            doc.fail(*offsets.elem, "cell " + std::to_string(c) + " (" + cell_type_name(t) + ") has " +
-                                        std::to_string(n) + " points instead of " + std::to_string(expect));
-        const int64_t* v = conn.i.data() + start;
-        if (t == kVtkTetra) {
-            for (int k = 0; k < 4; ++k) d.tets.push_back(static_cast<int32_t>(v[k]));
-            if (!region.empty()) d.regions.push_back(static_cast<int32_t>(region[c]));
-        } else if (t == kVtkTriangle) {
-            for (int k = 0; k < 3; ++k) d.triangles.push_back(static_cast<int32_t>(v[k]));
-            d.tri_markers.push_back(marker.empty() ? 0 : static_cast<int32_t>(marker[c]));
-        } else if (t == kVtkLine) {
-            d.feature_edges.push_back(static_cast<int32_t>(v[0]));
-            d.feature_edges.push_back(static_cast<int32_t>(v[1]));
-            d.edge_refs.push_back(marker.empty() ? 0 : static_cast<int32_t>(marker[c]));
-        }
-    }
-    if (d.tets.empty()) doc.fail(*piece, "the file has no tetrahedra (VTK_TETRA cells)");
-    if (d.tets.size() / 4 > static_cast<size_t>(INT32_MAX)) doc.fail(*piece, "more than 2^31 - 1 tets");
-    for (size_t k = 0; k < fixed.size(); ++k)
-        if (fixed[k] != 0) d.fixed.push_back(static_cast<int32_t>(k));
-    for (size_t k = 0; k < corner.size(); ++k)
-        if (corner[k] != 0) d.corners.push_back(static_cast<int32_t>(k));
-    d.vertex_refs.assign(ref.begin(), ref.end());  // each checked to fit in 32 bits
-    return d;
+    vtk.region = optional_ints(cell_data, "region", ncells, "cells");
+    vtk.marker = optional_ints(cell_data, "marker", ncells, "cells");
+    vtk.fixed = optional_ints(point_data, "fixed", npoints, "points");
+    vtk.corner = optional_ints(point_data, "corner", npoints, "points");
+    vtk.ref = optional_ints(point_data, "ref", npoints, "points");
+    vtk.offsets = std::move(offsets.i);
+    vtk.connectivity = std::move(conn.i);
+    vtk.types = std::move(types.i);
+    return mesh_from_vtk(std::move(vtk), [&](VtkPart part, const std::string& message) {
+        const XmlElement* e = part == VtkPart::Offsets        ? offsets.elem
+                              : part == VtkPart::Connectivity ? conn.elem
+                              : part == VtkPart::Types        ? types.elem
+                                                              : piece;
+        doc.fail(*e, message);
+    });
 }
 
 // ------------------------------------------------------------------ write_vtu
 
 void write_vtu(const std::string& path, const MeshData& d) {
-    const size_t nv = d.xyz.size() / 3, nt = d.tets.size() / 4, nf = d.triangles.size() / 3,
-                 ne = d.feature_edges.size() / 2;
-    auto invalid = [&](const std::string& message) {
-        throw Error(BODT_ERR_INVALID_ARGUMENT, "writing '" + path + "': " + message);
-    };
-    if (d.xyz.size() % 3 || d.tets.size() % 4 || d.triangles.size() % 3 || d.feature_edges.size() % 2)
-        invalid("an array size is not a multiple of its record size");
-    if (!d.regions.empty() && d.regions.size() != nt) invalid("regions must have one value per tet");
-    if (d.tri_markers.size() != nf) invalid("tri_markers must have one value per triangle");
-    if (!d.vertex_refs.empty() && d.vertex_refs.size() != nv) invalid("vertex_refs must have one value per vertex");
-    if (!d.edge_refs.empty() && d.edge_refs.size() != ne) invalid("edge_refs must have one value per feature edge");
-    auto check_index = [&](int32_t v) {
-        const int64_t i = static_cast<int64_t>(v) - d.base;
-        if (i < 0 || i >= static_cast<int64_t>(nv)) invalid("vertex " + std::to_string(v) + " is out of range");
-    };
-    for (int32_t v : d.tets) check_index(v);
-    for (int32_t v : d.triangles) check_index(v);
-    for (int32_t v : d.feature_edges) check_index(v);
-    for (int32_t v : d.fixed) check_index(v);
-    for (int32_t v : d.corners) check_index(v);
-    std::set<std::string> names = {"region", "marker"};
-    for (const auto& field : d.tet_fields) {
-        if (field.values.size() != nt) invalid("tet field '" + field.name + "' must have one value per tet");
-        if (field.name.empty()) invalid("a tet field has no name");
-        if (!names.insert(field.name).second) invalid("tet field name '" + field.name + "' is used twice or reserved");
-    }
-
-    const uint64_t ncells = nt + nf + ne;
-    const uint64_t nconn = 4 * static_cast<uint64_t>(nt) + 3 * static_cast<uint64_t>(nf) + 2 * static_cast<uint64_t>(ne);
+    const VtkCellWriter cells(path, d);
+    const uint64_t nv = cells.points(), ncells = cells.cells(), nconn = cells.connectivity_size();
     const bool offsets64 = nconn > static_cast<uint64_t>(INT32_MAX);
-    const int64_t base = d.base;
 
     OutputFile out(path);
     FILE* o = out.get();
@@ -905,13 +794,11 @@ void write_vtu(const std::string& path, const MeshData& d) {
                  "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
                  "header_type=\"UInt64\">\n"
                  "  <UnstructuredGrid>\n"
-                 "    <Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%llu\">\n",
-                 nv, static_cast<unsigned long long>(ncells));
+                 "    <Piece NumberOfPoints=\"%llu\" NumberOfCells=\"%llu\">\n",
+                 static_cast<unsigned long long>(nv), static_cast<unsigned long long>(ncells));
     const char* in4 = "        ";
-    // 1 on the listed vertices, else 0.
     auto write_flags = [&](const char* name, const std::vector<int32_t>& vertices) {
-        std::vector<uint8_t> flag(nv, 0);
-        for (int32_t v : vertices) flag[static_cast<size_t>(v - base)] = 1;
+        const std::vector<uint8_t> flag = cells.flags(vertices);
         write_array(o, in4, "UInt8", name, 1, nv, 1, [&](uint64_t k) { return uint64_t{flag[k]}; });
     };
     if (!d.fixed.empty() || !d.corners.empty() || !d.vertex_refs.empty()) {
@@ -923,53 +810,30 @@ void write_vtu(const std::string& path, const MeshData& d) {
         if (!d.corners.empty()) write_flags("corner", d.corners);
         std::fprintf(o, "      </PointData>\n");
     }
-    // Triangle cells always carry a marker; line cells only when the edges
-    // have refs (without the array they read back as ref 0).
-    const bool markers = nf > 0 || !d.edge_refs.empty();
-    if (!d.regions.empty() || markers || !d.tet_fields.empty()) {
+    if (cells.has_regions() || cells.has_markers() || !d.tet_fields.empty()) {
         if (!d.tet_fields.empty())
             std::fprintf(o, "      <CellData Scalars=\"%s\">\n", xml_escape(d.tet_fields[0].name).c_str());
         else
             std::fprintf(o, "      <CellData>\n");
-        if (!d.regions.empty())
-            write_array(o, in4, "Int32", "region", 1, ncells, 4, [&](uint64_t c) {
-                return int_bits(c < nt ? d.regions[c] : -1) & 0xFFFFFFFFu;
-            });
-        if (markers)
-            write_array(o, in4, "Int32", "marker", 1, ncells, 4, [&](uint64_t c) {
-                int32_t m = -1;  // on tets
-                if (c >= nt + nf) m = d.edge_refs.empty() ? 0 : d.edge_refs[c - nt - nf];
-                else if (c >= nt) m = d.tri_markers[c - nt];
-                return int_bits(m) & 0xFFFFFFFFu;
-            });
+        if (cells.has_regions())
+            write_array(o, in4, "Int32", "region", 1, ncells, 4,
+                        [&](uint64_t c) { return int_bits(cells.region(c)) & 0xFFFFFFFFu; });
+        if (cells.has_markers())
+            write_array(o, in4, "Int32", "marker", 1, ncells, 4,
+                        [&](uint64_t c) { return int_bits(cells.marker(c)) & 0xFFFFFFFFu; });
         for (const auto& field : d.tet_fields)
-            write_array(o, in4, "Float64", field.name, 1, ncells, 8, [&](uint64_t c) {
-                return double_bits(c < nt ? field.values[c] : std::numeric_limits<double>::quiet_NaN());
-            });
+            write_array(o, in4, "Float64", field.name, 1, ncells, 8,
+                        [&](uint64_t c) { return double_bits(cells.field(field, c)); });
         std::fprintf(o, "      </CellData>\n");
     }
     std::fprintf(o, "      <Points>\n");
-    write_array(o, in4, "Float64", "Points", 3, 3 * static_cast<uint64_t>(nv), 8,
-                [&](uint64_t k) { return double_bits(d.xyz[k]); });
+    write_array(o, in4, "Float64", "Points", 3, 3 * nv, 8, [&](uint64_t k) { return double_bits(d.xyz[k]); });
     std::fprintf(o, "      </Points>\n      <Cells>\n");
-    // Cell c's vertices: tets, then triangles, then edges, concatenated.
-    write_array(o, in4, "Int32", "connectivity", 1, nconn, 4, [&](uint64_t k) {
-        int32_t v;
-        if (k < 4 * uint64_t{nt}) v = d.tets[k];
-        else if ((k -= 4 * uint64_t{nt}) < 3 * uint64_t{nf}) v = d.triangles[k];
-        else v = d.feature_edges[k - 3 * uint64_t{nf}];
-        return int_bits(v - base) & 0xFFFFFFFFu;
-    });
-    write_array(o, in4, offsets64 ? "Int64" : "Int32", "offsets", 1, ncells, offsets64 ? 8 : 4, [&](uint64_t c) {
-        uint64_t end;
-        if (c < nt) end = 4 * (c + 1);
-        else if (c < nt + nf) end = 4 * uint64_t{nt} + 3 * (c - nt + 1);
-        else end = 4 * uint64_t{nt} + 3 * uint64_t{nf} + 2 * (c - nt - nf + 1);
-        return end;
-    });
-    write_array(o, in4, "UInt8", "types", 1, ncells, 1, [&](uint64_t c) {
-        return uint64_t{c < nt ? kVtkTetra : c < nt + nf ? kVtkTriangle : kVtkLine};
-    });
+    write_array(o, in4, "Int32", "connectivity", 1, nconn, 4,
+                [&](uint64_t k) { return int_bits(cells.connectivity(k)) & 0xFFFFFFFFu; });
+    write_array(o, in4, offsets64 ? "Int64" : "Int32", "offsets", 1, ncells, offsets64 ? 8 : 4,
+                [&](uint64_t c) { return cells.end_offset(c); });
+    write_array(o, in4, "UInt8", "types", 1, ncells, 1, [&](uint64_t c) { return uint64_t{cells.type(c)}; });
     std::fprintf(o, "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
     out.close();
 }

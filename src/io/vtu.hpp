@@ -1,30 +1,14 @@
 // VTK XML UnstructuredGrid (.vtu), the format ParaView reads natively.
 //
 // What a written file holds (one Piece, inline base64 "binary" arrays,
-// header_type UInt64, LittleEndian, no compression; version 1.0):
-//   Points      Float64 x 3
-//   Cells       connectivity Int32, offsets Int32 (Int64 past 2^31 - 1
-//               entries), types UInt8.  Cell order: every tet (VTK_TETRA,
-//               10; cell i is tet i), then every marked triangle
-//               (VTK_TRIANGLE, 5), then every feature edge (VTK_LINE, 3).
-//   CellData    region (Int32)  when there are regions: the tet's region,
-//                               -1 on triangle and line cells
-//               marker (Int32)  when there are marked triangles or edge
-//                               refs: the triangle's marker, the line's
-//                               edge ref, -1 on tets
-//               one Float64 array per MeshData::tet_fields entry, NaN on
-//               triangle and line cells
-//   PointData   fixed (UInt8)   when there are fixed vertices: 1 or 0
-//               corner (UInt8)  when there are corners: 1 or 0
-//               ref (Int32)     when there are vertex refs
-//
-// Why: boundary markers and feature edges survive a write -> read as cells
-// of their own (VTK has no other place for them), and the reader tells the
-// cells apart by their VTK type, never by the -1 / NaN fillers, so any
-// marker or region value (also -1) round-trips.  NaN keeps the non-tet cells
-// out of ParaView's Threshold on a quality field and out of its colour range;
-// "Extract Cells By Type" keeps only the tets.  Binary rather than ASCII:
-// exact for doubles by construction and about half the size of %.17g text.
+// header_type UInt64, LittleEndian, no compression; version 1.0): Points
+// (Float64 x 3), Cells (connectivity Int32, offsets Int32 or Int64 past
+// 2^31 - 1 entries, types UInt8), and the cells, cell data (region, marker
+// Int32, tet fields Float64) and point data (fixed, corner UInt8, ref Int32)
+// of vtk_cells.hpp.  NaN keeps the non-tet cells out of ParaView's
+// Threshold on a quality field and out of its colour range; "Extract Cells
+// By Type" keeps only the tets.  Binary rather than ASCII: exact for doubles
+// by construction and about half the size of %.17g text.
 //
 // The reader takes what the writer writes and what ParaView / VTK / meshio
 // write uncompressed: ASCII or inline base64 DataArrays (header UInt32 or

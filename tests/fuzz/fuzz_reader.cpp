@@ -5,6 +5,7 @@
 //   3 read_tetgen         (.node/.ele/.face)
 //   4 read_gmsh           (.msh)
 //   5 read_vtu            (.vtu)
+//   6 read_vtk            (.vtk, VTK legacy: ASCII and big-endian binary)
 // The readers take a path, so each input is written to a per-process
 // temporary directory first.  TetGen reads up to three files: the input is
 // split at the first and the second '@' byte (a byte that has no meaning in
@@ -18,6 +19,7 @@
 #include "io/gmsh.hpp"
 #include "io/medit_binary.hpp"
 #include "io/mesh_io.hpp"
+#include "io/vtk_legacy.hpp"
 #include "io/vtu.hpp"
 
 #include "common/error.hpp"
@@ -33,7 +35,7 @@
 #include <string>
 
 #ifndef BODT_FUZZ_FORMAT
-#error "compile with -DBODT_FUZZ_FORMAT=1..5"
+#error "compile with -DBODT_FUZZ_FORMAT=1..6"
 #endif
 
 namespace {
@@ -66,7 +68,7 @@ const std::string& temp_dir() {
 
 // At a normal exit; a crash leaves the directory (under $TMPDIR) behind.
 void remove_temp_dir() {
-    for (const char* ext : {".mesh", ".meshb", ".node", ".ele", ".face", ".msh", ".vtu"})
+    for (const char* ext : {".mesh", ".meshb", ".node", ".ele", ".face", ".msh", ".vtu", ".vtk"})
         std::remove((temp_dir() + "/in" + ext).c_str());
     rmdir(temp_dir().c_str());
 }
@@ -124,8 +126,11 @@ bodt::MeshData read(const uint8_t* data, size_t size) {
 #elif BODT_FUZZ_FORMAT == 5
     write_file(stem + ".vtu", data, size);
     return bodt::read_vtu(stem + ".vtu");
+#elif BODT_FUZZ_FORMAT == 6
+    write_file(stem + ".vtk", data, size);
+    return bodt::read_vtk(stem + ".vtk");
 #else
-#error "BODT_FUZZ_FORMAT must be 1..5"
+#error "BODT_FUZZ_FORMAT must be 1..6"
 #endif
 }
 

@@ -150,3 +150,4 @@ class Format(IntEnum):
     GMSH22_BINARY = 7
     VTU = 8
     ABAQUS = 9
+    VTK = 10
