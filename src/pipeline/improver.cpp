@@ -30,18 +30,20 @@ void count_outcome(MoveOutcome outcome, double distance, StepReport& report) {
 }
 
 // One vertex of a B-ODT or NODT sweep: `plan(target)` says where it goes,
-// `move(target, distance)` takes it there through the guard.
+// `move(target, distance)` takes it there through the guard.  Returns
+// whether it moved.
 template <class PlanFn, class MoveFn>
-void smooth_vertex(PlanFn plan, MoveFn move, StepReport& report) {
+bool smooth_vertex(PlanFn plan, MoveFn move, StepReport& report) {
     Vec3 target;
     switch (plan(target)) {
-        case Plan::Stay: return;
-        case Plan::NotPositiveDefinite: ++report.not_positive_definite; return;
+        case Plan::Stay: return false;
+        case Plan::NotPositiveDefinite: ++report.not_positive_definite; return false;
         case Plan::Move: break;
     }
     double distance = 0.0;
     const MoveOutcome outcome = move(target, distance);
     count_outcome(outcome, distance, report);
+    return outcome != MoveOutcome::Rejected;
 }
 
 // Adds the sweep counters of each thread's report to `report`.
@@ -64,15 +66,18 @@ void Improver::set_mode(int mode) {
         throw Error(BODT_ERR_INVALID_ARGUMENT, "unknown mode " + std::to_string(mode));
     mode_ = mode;
     classes_valid_ = false;
+    settled_.clear();
 }
 
 void Improver::set_param_int(int key, int32_t value) {
     bodt::set_param_int(params_, key, value);
+    settled_.clear();
 }
 
 void Improver::set_param_double(int key, double value) {
     bodt::set_param_double(params_, key, value);
     classes_valid_ = false;
+    settled_.clear();
     if (key == BODT_PARAM_FEATURE_ANGLE || key == BODT_PARAM_FIT_TOLERANCE) geometry_valid_ = false;
 }
 
@@ -129,17 +134,22 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
     };
     const bool interior_only = mode_ == BODT_MODE_ODT;
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
+    settled_.begin_sweep(mesh.points.size(), mesh.colouring().colours());
     const auto states = coloured_sweep(
-        mesh.colouring(), threads,
-        State{BodtSmoother(surfaces, cls), MoveGuard(guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
-            if (interior_only && cls.cls[v] != VertexClass::Interior) return;
+        mesh.colouring(), threads, State{BodtSmoother(surfaces, cls), MoveGuard(guard_settings(), &shapes), {}, {}},
+        [&](State& s, int32_t v, int32_t colour) {
+            const bool inner = cls.cls[v] == VertexClass::Interior;
+            if ((interior_only && !inner) || (inner && settled_.settled(mesh, v))) return;
             StarTable& star = s.guard.star();
             star.gather(mesh, v);
-            smooth_vertex([&](Vec3& target) { return s.smoother.target(mesh, v, star, target, s.faces); },
-                          [&](const Vec3& target, double& distance) {
-                              return s.guard.move_gathered(mesh, v, target, s.faces, distance);
-                          },
-                          s.report);
+            const bool moved = smooth_vertex(
+                [&](Vec3& target) { return s.smoother.target(mesh, v, star, target, s.faces); },
+                [&](const Vec3& target, double& distance) {
+                    return s.guard.move_gathered(mesh, v, target, s.faces, distance);
+                },
+                s.report);
+            if (moved) settled_.moved(v, settled_.tick(colour));
+            else if (inner) settled_.stayed(v, settled_.tick(colour));
         });
     merge_counts(states, report);
 }
@@ -302,12 +312,16 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
             step_phased(mesh, surfaces, report);
         } else {
             if (ops() & BODT_OP_SMOOTH) sweep(mesh, surfaces, shapes_, report);
-            if (change_topology(mesh, surfaces, report)) shapes_ = ShapeCache();  // freed, then made anew
+            if (change_topology(mesh, surfaces, report)) {
+                shapes_ = ShapeCache();  // freed, then made anew
+                settled_.clear();
+            }
         }
         for (const Vec3& p : mesh.points)
             if (!p.allFinite()) throw Error(BODT_ERR_NUMERIC, "a vertex position became non-finite");
     } catch (...) {
         shapes_ = ShapeCache();
+        settled_.clear();
         if (topology) {
             mesh = std::move(saved_mesh);
             surfaces = std::move(saved_surfaces);

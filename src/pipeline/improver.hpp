@@ -19,6 +19,7 @@
 #include "smoothing/input_surface.hpp"
 #include "smoothing/move_guard.hpp"
 #include "smoothing/quasi_newton.hpp"
+#include "smoothing/settled_vertices.hpp"
 
 #include <cstdint>
 
@@ -49,6 +50,7 @@ public:
     void mesh_data_changed() {
         classes_valid_ = false;
         geometry_valid_ = false;
+        settled_.clear();
     }
     const VertexClasses& classes(const TetMesh& mesh, const RegionSurfaces& surfaces) const;
 
@@ -98,6 +100,7 @@ private:
     // the connectivity (the phased mode, topology passes, a rolled-back
     // step).  Only step() moves the vertices of the handle's mesh.
     ShapeCache shapes_;
+    mutable SettledVertices settled_;  // B-ODT sweeps: inner vertices that need no new try
     mutable VertexClasses classes_;  // a cache: computing it changes no result
     mutable bool classes_valid_ = false;
     mutable GeometryModel geometry_;  // carried state in the phased mode, a cache otherwise

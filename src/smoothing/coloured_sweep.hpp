@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <type_traits>
 #include <vector>
 
 #ifdef _OPENMP
@@ -34,7 +35,8 @@ inline int sweep_threads(int32_t requested, size_t items) {
 }
 
 // Calls body(state, v) for every coloured vertex v, where `state` is the
-// calling thread's own copy of `initial` (scratch space and counters).
+// calling thread's own copy of `initial` (scratch space and counters), or
+// body(state, v, c) with v's colour c when `body` takes one.
 // Returns the states, one per thread, for the caller to merge.  An exception
 // thrown by `body` stops the sweep after the current colour and is rethrown.
 template <class State, class Body>
@@ -57,7 +59,10 @@ std::vector<State> coloured_sweep(const VertexColouring& colouring, int threads,
             for (int32_t i = colouring.offset[c]; i < colouring.offset[c + 1]; ++i) {
                 if (errors[me]) continue;
                 try {
-                    body(states[me], colouring.order[i]);
+                    if constexpr (std::is_invocable_v<Body&, State&, int32_t, int32_t>)
+                        body(states[me], colouring.order[i], c);
+                    else
+                        body(states[me], colouring.order[i]);
                 } catch (...) {
                     errors[me] = std::current_exception();
                 }

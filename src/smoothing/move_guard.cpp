@@ -25,13 +25,18 @@ BODT_KERNEL bool tet_check(const double* rows, size_t n, size_t s, double floor,
            !(never_worse && (shape.cosines.of_min > before.of_min || shape.cosines.of_max < before.of_max));
 }
 
-// Every star tet at once, in a loop the compiler vectorises.
+// Every star tet at once, in a loop the compiler vectorises; failed[s] says
+// whether tet s failed.
 BODT_VECTOR_CLONES
 bool star_passes(const double* rows, size_t n, const double* floor, CosineRange before, bool never_worse,
-                 double* after) {
+                 double* after, uint8_t* failed) {
     int bad = 0;
 #pragma omp simd reduction(| : bad)
-    for (size_t s = 0; s < n; ++s) bad |= !tet_check(rows, n, s, floor[s], before, never_worse, after);
+    for (size_t s = 0; s < n; ++s) {
+        const int fails = !tet_check(rows, n, s, floor[s], before, never_worse, after);
+        failed[s] = static_cast<uint8_t>(fails);
+        bad |= fails;
+    }
     return bad == 0;
 }
 
@@ -47,8 +52,13 @@ bool MoveGuard::acceptable(const TetMesh& mesh, const std::vector<FaceKey>& surf
     // The tets that held the star's extreme angles fail most often: first.
     for (const size_t k : extreme_)
         if (!tet_passes(k)) return false;
-    return star_passes(star_.corners(), star_.size(), floor_.data(), star_before_, settings_.never_worse,
-                       after_.data());
+    // A shorter move mostly fails where the longer one did: that tet next.
+    if (last_failed_ < star_.size() && !tet_passes(last_failed_)) return false;
+    if (star_passes(star_.corners(), star_.size(), floor_.data(), star_before_, settings_.never_worse, after_.data(),
+                    failed_.data()))
+        return true;
+    last_failed_ = static_cast<size_t>(std::find(failed_.begin(), failed_.end(), 1) - failed_.begin());
+    return false;
 }
 
 MoveOutcome MoveGuard::move(TetMesh& mesh, int32_t v, const Vec3& target, const std::vector<FaceKey>& surface_faces,
@@ -65,6 +75,8 @@ MoveOutcome MoveGuard::move_gathered(TetMesh& mesh, int32_t v, const Vec3& targe
     const int32_t* star = mesh.star_begin(v);
     floor_.resize(n);
     after_.resize(3 * n);
+    failed_.resize(n);
+    last_failed_ = n;
     star_before_ = {-1.0, 1.0};
     extreme_ = {0, 0};
     for (size_t k = 0; k < n; ++k) {

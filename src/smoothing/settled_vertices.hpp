@@ -1,0 +1,63 @@
+// The inner vertices a B-ODT sweep need not try again.  An inner vertex
+// that stayed where it was at its last visit (the guard refused every trial
+// move, or the model had no minimum) stays again while no vertex of its star
+// has moved since: the same star gives the same target (eq. 3) and the same
+// verdict, so skipping it changes no result.  Time is counted in colours of
+// the sweeps (one tick per colour; vertices of one colour share no tet), so
+// the answer does not depend on the threads.  The owner clears it whenever
+// the connectivity, the mesh data, the mode or a parameter changes.
+#pragma once
+
+#include "mesh/tet_mesh.hpp"
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace bodt {
+
+class SettledVertices {
+public:
+    void clear() {
+        moved_at_.clear();
+        stayed_at_.clear();
+        clock_ = 0;
+    }
+
+    // Starts a sweep of a mesh with `vertices` vertices in `colours` colours.
+    void begin_sweep(size_t vertices, int32_t colours) {
+        const uint32_t ticks = static_cast<uint32_t>(colours) + 1;
+        if (moved_at_.size() != vertices || clock_ > std::numeric_limits<uint32_t>::max() - ticks) {
+            moved_at_.assign(vertices, 0);
+            stayed_at_.assign(vertices, 0);
+            clock_ = 0;
+        }
+        base_ = clock_;
+        clock_ += ticks;
+    }
+    // The time of colour c in the current sweep.
+    uint32_t tick(int32_t colour) const { return base_ + static_cast<uint32_t>(colour) + 1; }
+
+    // v stayed at its last visit and no vertex of its star moved since.
+    bool settled(const TetMesh& mesh, int32_t v) const {
+        const uint32_t at = stayed_at_[v];
+        if (at == 0) return false;
+        for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
+            for (const int32_t u : mesh.tets[*t])
+                if (moved_at_[u] >= at) return false;
+        return true;
+    }
+
+    // Every vertex that moves, inner or not, must be reported.
+    void moved(int32_t v, uint32_t tick) {
+        moved_at_[v] = tick;
+        stayed_at_[v] = 0;
+    }
+    void stayed(int32_t v, uint32_t tick) { stayed_at_[v] = tick; }
+
+private:
+    std::vector<uint32_t> moved_at_, stayed_at_;  // 0: never
+    uint32_t clock_ = 0, base_ = 0;
+};
+
+}  // namespace bodt
