@@ -108,7 +108,7 @@ def targets_table(lists):
     for i in order:
         t = merged[i]
         detail = t.get("detail", "")
-        if detail.startswith("missed: ") and detail.count(", ") > 6:  # older runs listed every pair
+        if detail.startswith("missed: ") and " more (" not in detail and detail.count(", ") > 6:  # older runs listed every pair
             parts = detail[len("missed: "):].split(", ")
             detail = "missed: " + ", ".join(parts[:6]) + f" and {len(parts) - 6} more (bench/results/latest.md)"
         value = t["value"] + (" — " + detail if detail else "")
