@@ -5,21 +5,19 @@
 #include "io/gmsh.hpp"
 
 #include "io/output_file.hpp"
+#include "io/text_scanner.hpp"
 
 #include "bodt.h"
 #include "common/error.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdarg>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string_view>
 #include <unordered_set>
 #include <utility>
@@ -92,14 +90,7 @@ std::string printable(std::string_view s) {
 
 class Input {
 public:
-    explicit Input(const std::string& path) : path_(path) {
-        std::ifstream in(path, std::ios::binary);
-        if (!in) throw Error(BODT_ERR_IO, "cannot open '" + path + "': " + std::strerror(errno));
-        std::ostringstream buffer;
-        buffer << in.rdbuf();
-        if (in.bad()) throw Error(BODT_ERR_IO, "cannot read '" + path + "'");
-        buf_ = buffer.str();
-    }
+    explicit Input(const std::string& path) : path_(path), buf_(read_file_text(path)) {}
 
     // From here on, messages give byte offsets instead of line numbers.
     void set_binary() { binary_ = true; }

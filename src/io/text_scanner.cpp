@@ -13,14 +13,16 @@
 
 namespace bodt {
 
-TextScanner::TextScanner(const std::string& path) : path_(path) {
+std::string read_file_text(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(BODT_ERR_IO, "cannot open '" + path + "': " + std::strerror(errno));
     std::ostringstream buffer;
     buffer << in.rdbuf();
     if (in.bad()) throw Error(BODT_ERR_IO, "cannot read '" + path + "'");
-    text_ = buffer.str();
+    return buffer.str();
 }
+
+TextScanner::TextScanner(const std::string& path) : path_(path), text_(read_file_text(path)) {}
 
 void TextScanner::fail(const std::string& message) const {
     throw Error(BODT_ERR_IO, path_ + ":" + std::to_string(line_) + ": " + message);

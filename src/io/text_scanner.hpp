@@ -8,6 +8,9 @@
 
 namespace bodt {
 
+// The whole file, as bytes; Error(BODT_ERR_IO) if it cannot be opened or read.
+std::string read_file_text(const std::string& path);
+
 class TextScanner {
 public:
     // Reads the file; throws Error(BODT_ERR_IO) if it cannot.

@@ -8,6 +8,7 @@
 #include "io/vtk_legacy.hpp"
 
 #include "io/output_file.hpp"
+#include "io/text_scanner.hpp"
 #include "io/vtk_cells.hpp"
 
 #include "bodt.h"
@@ -15,14 +16,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -90,14 +88,7 @@ std::string encode_name(const std::string& s) {
 
 class LegacyScanner {
 public:
-    explicit LegacyScanner(const std::string& path) : path_(path) {
-        std::ifstream in(path, std::ios::binary);
-        if (!in) throw Error(BODT_ERR_IO, "cannot open '" + path + "': " + std::strerror(errno));
-        std::ostringstream buffer;
-        buffer << in.rdbuf();
-        if (in.bad()) throw Error(BODT_ERR_IO, "cannot read '" + path + "'");
-        text_ = buffer.str();
-    }
+    explicit LegacyScanner(const std::string& path) : path_(path), text_(read_file_text(path)) {}
 
     // Where the scanner is, to name in a message later.
     struct Place {

@@ -8,20 +8,18 @@
 #include "io/vtu.hpp"
 
 #include "io/output_file.hpp"
+#include "io/text_scanner.hpp"
 #include "io/vtk_cells.hpp"
 
 #include "bodt.h"
 #include "common/error.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -529,15 +527,6 @@ int64_t count_attr(const XmlDocument& doc, const XmlElement& e, const char* key,
         doc.fail(e, std::string(key) + " '" + *s + "' is not a non-negative integer");
     if (v > max) doc.fail(e, std::string(key) + " " + *s + " is too large");
     return v;
-}
-
-std::string read_file_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(BODT_ERR_IO, "cannot open '" + path + "': " + std::strerror(errno));
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) throw Error(BODT_ERR_IO, "cannot read '" + path + "'");
-    return buffer.str();
 }
 
 // ------------------------------------------------------------------ writing
