@@ -29,6 +29,12 @@ namespace bodt {
 
 namespace {
 
+// s without leading and trailing blanks (spaces, tabs).
+std::string_view trimmed(std::string_view s) {
+    s.remove_prefix(std::min(s.size(), s.find_first_not_of(" \t")));
+    return s.substr(0, s.find_last_not_of(" \t") + 1);
+}
+
 bool iequals(std::string_view a, std::string_view b) {
     return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
                return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
@@ -190,15 +196,23 @@ public:
         ++line_;
     }
 
-    // n values of `type`, each handed to put(k, value) as an int64 (integer
+    // Refuses n values of `type` that the bytes left cannot hold: at least
+    // one character and a separator each in text.
+    void check_room(int64_t n, const ValueType& type, const char* what) const {
+        const size_t left = text_.size() - pos_;
+        if (binary_ && static_cast<uint64_t>(n) > left / static_cast<uint64_t>(type.size))
+            fail(std::to_string(n) + " " + what + " need " + std::to_string(n) + " x " + std::to_string(type.size) +
+                 " bytes, but only " + std::to_string(left) + " are left");
+        if (!binary_ && static_cast<uint64_t>(n) > (left + 1) / 2)
+            fail(std::to_string(n) + " " + what + " cannot fit in the " + std::to_string(left) + " bytes left");
+    }
+
+    // n values of `type`, each handed to put(value) as an int64 (integer
     // types) or a double (float types); skipped without `put`.
     template <class Put>
     void values(int64_t n, const ValueType& type, const char* what, Put put) {
-        const size_t left = text_.size() - pos_;
+        check_room(n, type, what);
         if (binary_) {
-            if (static_cast<uint64_t>(n) > left / static_cast<uint64_t>(type.size))
-                fail(std::to_string(n) + " " + what + " need " + std::to_string(n) + " x " +
-                     std::to_string(type.size) + " bytes, but only " + std::to_string(left) + " are left");
             const auto* p = reinterpret_cast<const unsigned char*>(text_.data() + pos_);
             for (int64_t k = 0; k < n; ++k, p += type.size) {
                 uint64_t bits = 0;
@@ -213,22 +227,19 @@ public:
                     } else {
                         std::memcpy(&v, &bits, 8);
                     }
-                    put(k, v);
+                    put(v);
                 } else if (type.is_signed && type.size < 8 && (bits >> (8 * type.size - 1)) != 0) {
-                    put(k, static_cast<int64_t>(bits) - (int64_t{1} << (8 * type.size)));
+                    put(static_cast<int64_t>(bits) - (int64_t{1} << (8 * type.size)));
                 } else if (!type.is_signed && bits > static_cast<uint64_t>(INT64_MAX)) {
                     // Beyond every range read (indices, 32-bit markers): kept out of it.
-                    put(k, INT64_MAX);
+                    put(INT64_MAX);
                 } else {
-                    put(k, static_cast<int64_t>(bits));
+                    put(static_cast<int64_t>(bits));
                 }
             }
             pos_ += static_cast<size_t>(n) * static_cast<size_t>(type.size);
             return;
         }
-        // Text: at least one character and a separator per value.
-        if (static_cast<uint64_t>(n) > (left + 1) / 2)
-            fail(std::to_string(n) + " " + what + " cannot fit in the " + std::to_string(left) + " bytes left");
         for (int64_t k = 0; k < n; ++k) {
             const std::string_view t = expect(what);
             if (type.integer) {
@@ -236,41 +247,38 @@ public:
                 const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
                 if (ec != std::errc() || ptr != t.data() + t.size())
                     fail("'" + std::string(t) + "' is not an integer (" + what + ")");
-                put(k, v);
+                put(v);
             } else {
                 double v = 0.0;
                 const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
                 if (ec != std::errc() || ptr != t.data() + t.size())
                     fail("'" + std::string(t) + "' is not a number (" + what + ")");
                 // A float array holds the float nearest the text, as VTK reads it.
-                put(k, type.size == 4 ? static_cast<double>(static_cast<float>(v)) : v);
+                put(type.size == 4 ? static_cast<double>(static_cast<float>(v)) : v);
             }
         }
     }
 
     // Skipped values are still parsed: a short array shows where it ends.
     void skip(int64_t n, const ValueType& type, const char* what) {
-        values(n, type, what, [](int64_t, auto) {});
+        values(n, type, what, [](auto) {});
+    }
+
+    // n values of `type` as T.
+    template <class T>
+    std::vector<T> read(int64_t n, const ValueType& type, const char* what) {
+        check_room(n, type, what);
+        std::vector<T> out;
+        out.reserve(static_cast<size_t>(n));
+        values(n, type, what, [&](auto v) { out.push_back(static_cast<T>(v)); });
+        return out;
     }
 
     std::vector<int64_t> ints(int64_t n, const ValueType& type, const char* what) {
         if (!type.integer) fail(std::string("the ") + what + " must be of an integer type, not " + std::string(type.name));
-        std::vector<int64_t> out;
-        values(n, type, what, [&](int64_t k, auto v) {
-            if (k == 0) out.reserve(static_cast<size_t>(n));
-            out.push_back(static_cast<int64_t>(v));
-        });
-        return out;
+        return read<int64_t>(n, type, what);
     }
-
-    std::vector<double> reals(int64_t n, const ValueType& type, const char* what) {
-        std::vector<double> out;
-        values(n, type, what, [&](int64_t k, auto v) {
-            if (k == 0) out.reserve(static_cast<size_t>(n));
-            out.push_back(static_cast<double>(v));
-        });
-        return out;
-    }
+    std::vector<double> reals(int64_t n, const ValueType& type, const char* what) { return read<double>(n, type, what); }
 
     // A 5.x METADATA block of an array of `components` components: lines up
     // to a blank one, where COMPONENT_NAMES is followed by one line per
@@ -278,8 +286,7 @@ public:
     void skip_metadata(int64_t components) {
         line("METADATA");  // the rest of the METADATA line
         while (pos_ < text_.size()) {
-            std::string_view l = line("METADATA");
-            l.remove_prefix(std::min(l.size(), l.find_first_not_of(" \t")));
+            const std::string_view l = trimmed(line("METADATA"));
             if (l.empty()) return;
             if (l.size() >= 15 && iequals(l.substr(0, 15), "COMPONENT_NAMES"))
                 for (int64_t c = 0; c < components; ++c) line("the component names");
@@ -323,17 +330,14 @@ MeshData read_vtk(const std::string& path) {
     constexpr std::string_view kMagic = "# vtk DataFile Version";
     if (version.size() < kMagic.size() || !iequals(version.substr(0, kMagic.size()), kMagic))
         s.fail_at({0, 1}, "not a VTK legacy file: the first line is not '# vtk DataFile Version x.x'");
-    std::string_view number = version.substr(kMagic.size());
-    number.remove_prefix(std::min(number.size(), number.find_first_not_of(" \t")));
+    const std::string_view number = trimmed(version.substr(kMagic.size()));
     int major = 0;
     if (std::from_chars(number.data(), number.data() + number.size(), major).ec != std::errc())
         s.fail_at({0, 1}, "no version number after '# vtk DataFile Version'");
     if (major < 1 || major > 5)
         s.fail_at({0, 1}, "version " + std::string(number) + " is not one this reader knows (1.0 to 5.1)");
     s.line("the title");
-    std::string_view mode = s.line("ASCII or BINARY");
-    mode.remove_prefix(std::min(mode.size(), mode.find_first_not_of(" \t")));
-    mode = mode.substr(0, mode.find_last_not_of(" \t") + 1);
+    const std::string_view mode = trimmed(s.line("ASCII or BINARY"));
     if (!iequals(mode, "ascii") && !iequals(mode, "binary"))
         s.fail_at({0, 3}, "the third line must be ASCII or BINARY, not '" + std::string(mode) + "'");
     s.set_binary(iequals(mode, "binary"));
