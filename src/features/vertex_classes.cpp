@@ -58,13 +58,14 @@ EdgeSet detect_feature_edges(const TetMesh& mesh, const RegionSurfaces& surfaces
 std::vector<char> fin_vertices(const TetMesh& mesh) {
     std::vector<char> fin(mesh.points.size(), 0);
     if (mesh.face_markers.empty()) return fin;
+    const std::vector<uint8_t> marked = mesh.marked_face_vertices();
     for (int32_t t = 0; t < mesh.num_tets(); ++t)
         for (int i = 0; i < 4; ++i) {
             const int32_t s = mesh.neighbors[t][i];
             if (s < 0 || mesh.regions[s] != mesh.regions[t]) continue;
             const Tet& q = mesh.tets[t];
             const int32_t a = q[kFaceVertex[i][0]], b = q[kFaceVertex[i][1]], c = q[kFaceVertex[i][2]];
-            if (mesh.face_markers.count(FaceKey::of(a, b, c))) fin[a] = fin[b] = fin[c] = 1;
+            if (marked[a] && marked[b] && marked[c] && mesh.is_marked_face(t, i)) fin[a] = fin[b] = fin[c] = 1;
         }
     return fin;
 }

@@ -144,18 +144,36 @@ void TetMesh::build_neighbors(int base, int threads) {
 
 bool TetMesh::is_surface_face(int32_t t, int i) const {
     const int32_t s = neighbors[t][i];
-    if (s < 0) return true;
-    if (regions[s] != regions[t]) return true;
+    return s < 0 || regions[s] != regions[t] || is_marked_face(t, i);
+}
+
+bool TetMesh::is_marked_face(int32_t t, int i) const {
     if (face_markers.empty()) return false;
     const auto f = face_of(tets[t], i);
     return face_markers.count(FaceKey::of(f[0], f[1], f[2])) != 0;
 }
 
+std::vector<uint8_t> TetMesh::marked_face_vertices() const {
+    std::vector<uint8_t> marked(points.size(), 0);
+    for (const auto& m : face_markers)
+        for (const int32_t v : m.first.v) marked[v] = 1;
+    return marked;
+}
+
+bool TetMesh::is_surface_face(int32_t t, int i, const std::vector<uint8_t>& marked) const {
+    const int32_t s = neighbors[t][i];
+    if (s < 0 || regions[s] != regions[t]) return true;
+    const Tet& q = tets[t];
+    for (int k = 0; k < 3; ++k)
+        if (!marked[q[kFaceVertex[i][k]]]) return false;
+    return is_marked_face(t, i);
+}
+
 // An interior surface face is listed once, from the side it points out of:
 // the tet with the smaller region id, or the smaller (caller's) index in
 // equal regions.
-bool TetMesh::is_listed_face(int32_t t, int i) const {
-    if (!is_surface_face(t, i)) return false;
+bool TetMesh::is_listed_face(int32_t t, int i, const std::vector<uint8_t>& marked) const {
+    if (!is_surface_face(t, i, marked)) return false;
     const int32_t s = neighbors[t][i];
     return s < 0 || regions[t] < regions[s] || (regions[t] == regions[s] && caller_tet(t) < caller_tet(s));
 }
@@ -167,9 +185,10 @@ void TetMesh::update_vertex_flags() {
         vflags[v] &= kPinned;
         if (vt_offset[v] == vt_offset[v + 1]) vflags[v] |= kUnused;
     }
+    const std::vector<uint8_t> marked = marked_face_vertices();
     for (int32_t t = 0; t < num_tets(); ++t) {
         for (int i = 0; i < 4; ++i) {
-            if (!is_surface_face(t, i)) continue;
+            if (!is_surface_face(t, i, marked)) continue;
             const uint8_t flag = neighbors[t][i] < 0 ? kOnBoundary : kOnInterface;
             for (int k = 0; k < 3; ++k) vflags[tets[t][kFaceVertex[i][k]]] |= flag;
         }
@@ -235,9 +254,10 @@ const VertexColouring& TetMesh::colouring() const {
 
 std::vector<SurfaceFace> TetMesh::surface_faces() const {
     std::vector<std::pair<FaceKey, SurfaceFace>> keyed;  // sorted by the caller's vertex indices
+    const std::vector<uint8_t> marked = marked_face_vertices();
     for (int32_t t = 0; t < num_tets(); ++t) {
         for (int i = 0; i < 4; ++i) {
-            if (!is_listed_face(t, i)) continue;
+            if (!is_listed_face(t, i, marked)) continue;
             const auto f = outward_face(t, i);
             const auto it = face_markers.find(FaceKey::of(f[0], f[1], f[2]));
             keyed.push_back({FaceKey::of(caller_vertex(f[0]), caller_vertex(f[1]), caller_vertex(f[2])),
@@ -253,8 +273,9 @@ std::vector<SurfaceFace> TetMesh::surface_faces() const {
 
 int32_t TetMesh::count_surface_faces() const {
     int32_t n = 0;
+    const std::vector<uint8_t> marked = marked_face_vertices();
     for (int32_t t = 0; t < num_tets(); ++t)
-        for (int i = 0; i < 4; ++i) n += is_listed_face(t, i);
+        for (int i = 0; i < 4; ++i) n += is_listed_face(t, i, marked);
     return n;
 }
 

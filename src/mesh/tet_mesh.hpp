@@ -179,12 +179,20 @@ public:
 
     // Face i of tet t is on the domain boundary, between regions, or marked.
     bool is_surface_face(int32_t t, int i) const;
+    // Face i of tet t carries a marker.
+    bool is_marked_face(int32_t t, int i) const;
+    // For loops over every face: 1 for each vertex of a marked face, so
+    // that the marker table is searched only for faces whose three vertices
+    // all have it.
+    std::vector<uint8_t> marked_face_vertices() const;
 
 private:
+    // is_surface_face() with marked_face_vertices() at hand.
+    bool is_surface_face(int32_t t, int i, const std::vector<uint8_t>& marked) const;
     void build_incidence();
     void build_neighbors(int base, int threads);
     void order_stars_as_caller();
-    bool is_listed_face(int32_t t, int i) const;
+    bool is_listed_face(int32_t t, int i, const std::vector<uint8_t>& marked) const;
 
     mutable std::shared_ptr<const VertexColouring> colouring_;  // a cache of the connectivity
 };

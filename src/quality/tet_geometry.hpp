@@ -28,7 +28,7 @@ using Vec3 = Eigen::Vector3d;
 // so both give the same bits.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
     !defined(__SANITIZE_ADDRESS__)
-#define BODT_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#define BODT_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define BODT_VECTOR_CLONES
 #endif

@@ -63,8 +63,10 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
     } else {
         origin_ = mesh.tet_origin;
     }
+    for (size_t v = 0; v < points_.size(); ++v)
+        vtets_[v].reserve(static_cast<size_t>(mesh.star_end(static_cast<int32_t>(v)) - mesh.star_begin(static_cast<int32_t>(v))));
     for (int32_t t = 0; t < tet_capacity(); ++t)
-        for (int32_t v : tets_[t]) vtets_[v].push_back(t);
+        for (int32_t v : tets_[t]) vtets_[v].push_back(t);  // ascending
 }
 
 std::vector<int32_t> EditableMesh::write_to(TetMesh& mesh) const {
