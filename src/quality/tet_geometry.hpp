@@ -22,10 +22,10 @@ using Vec3 = Eigen::Vector3d;
 #else
 #define BODT_KERNEL inline
 #endif
-// A function holding such a loop is built twice on x86-64 Linux, for AVX2
-// and for the base instruction set, and the loader picks one.  Neither may
-// contract a multiply-add (-ffp-contract=off) or sum across vector lanes,
-// so both give the same bits.
+// A function holding such a loop is built three times on x86-64 Linux, for
+// AVX-512, AVX2 and the base instruction set, and the loader picks one.
+// None may contract a multiply-add (-ffp-contract=off) or sum across vector
+// lanes, so all give the same bits.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
     !defined(__SANITIZE_ADDRESS__)
 #define BODT_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
