@@ -11,12 +11,12 @@ Vec3 face_normal(const TetMesh& mesh, const FaceKey& f) {
     return (mesh.points[f.v[1]] - a).cross(mesh.points[f.v[2]] - a);
 }
 
-// One star tet's shape from the corner table (column s of its 12 rows of
-// n); its stretch and cosines go to column s of `after`.  Returns whether it
+// Star tet s with the vertex at x (star_tet_kernel); its stretch and
+// cosines go to column s of `after` (3 rows of n).  Returns whether it
 // passes the guard.
-BODT_KERNEL bool tet_check(const double* rows, size_t n, size_t s, double floor, const CosineRange& before,
-                           bool never_worse, double* after) {
-    const TetKernel k = tet_kernel(rows, n, s);
+BODT_KERNEL bool tet_check(const double* opposite, const int32_t* at, size_t n, size_t s, const Coords& x, double floor,
+                           const CosineRange& before, bool never_worse, double* after) {
+    const TetKernel k = star_tet_kernel(opposite, at, n, s, x);
     const TetShape shape = shape_of(k);
     after[s] = shape.stretch;
     after[n + s] = shape.cosines.of_min;
@@ -28,12 +28,12 @@ BODT_KERNEL bool tet_check(const double* rows, size_t n, size_t s, double floor,
 // Every star tet at once, in a loop the compiler vectorises; failed[s] says
 // whether tet s failed.
 BODT_VECTOR_CLONES
-bool star_passes(const double* rows, size_t n, const double* floor, CosineRange before, bool never_worse,
-                 double* after, uint8_t* failed) {
+bool star_passes(const double* opposite, const int32_t* at, size_t n, Coords x, const double* floor,
+                 CosineRange before, bool never_worse, double* after, uint8_t* failed) {
     int bad = 0;
 #pragma omp simd reduction(| : bad)
     for (size_t s = 0; s < n; ++s) {
-        const int fails = !tet_check(rows, n, s, floor[s], before, never_worse, after);
+        const int fails = !tet_check(opposite, at, n, s, x, floor[s], before, never_worse, after);
         failed[s] = static_cast<uint8_t>(fails);
         bad |= fails;
     }
@@ -42,20 +42,22 @@ bool star_passes(const double* rows, size_t n, const double* floor, CosineRange 
 
 }  // namespace
 
-bool MoveGuard::tet_passes(size_t k) {
-    return tet_check(star_.corners(), star_.size(), k, floor_[k], star_before_, settings_.never_worse, after_.data());
+bool MoveGuard::tet_passes(size_t k, const Coords& x) {
+    return tet_check(star_.opposite(), star_.at(), star_.size(), k, x, floor_[k], star_before_, settings_.never_worse,
+                     after_.data());
 }
 
-bool MoveGuard::acceptable(const TetMesh& mesh, const std::vector<FaceKey>& surface_faces) {
+bool MoveGuard::acceptable(const TetMesh& mesh, const Vec3& at, const std::vector<FaceKey>& surface_faces) {
+    const Coords x = coords(at);
     for (size_t k = 0; k < surface_faces.size(); ++k)
         if (!(face_normal(mesh, surface_faces[k]).dot(normals_[k]) > 0.0)) return false;
     // The tets that held the star's extreme angles fail most often: first.
     for (const size_t k : extreme_)
-        if (!tet_passes(k)) return false;
+        if (!tet_passes(k, x)) return false;
     // A shorter move mostly fails where the longer one did: that tet next.
-    if (last_failed_ < star_.size() && !tet_passes(last_failed_)) return false;
-    if (star_passes(star_.corners(), star_.size(), floor_.data(), star_before_, settings_.never_worse, after_.data(),
-                    failed_.data()))
+    if (last_failed_ < star_.size() && !tet_passes(last_failed_, x)) return false;
+    if (star_passes(star_.opposite(), star_.at(), star_.size(), x, floor_.data(), star_before_, settings_.never_worse,
+                    after_.data(), failed_.data()))
         return true;
     last_failed_ = static_cast<size_t>(std::find(failed_.begin(), failed_.end(), 1) - failed_.begin());
     return false;
@@ -95,8 +97,7 @@ MoveOutcome MoveGuard::move_gathered(TetMesh& mesh, int32_t v, const Vec3& targe
     Vec3 step = target - start;
     for (int attempt = 0; attempt <= settings_.backtrack_steps; ++attempt, step *= 0.5) {
         mesh.points[v] = start + step;
-        star_.place(mesh.points[v]);
-        if (acceptable(mesh, surface_faces)) {
+        if (acceptable(mesh, mesh.points[v], surface_faces)) {
             if (cache_)
                 for (size_t k = 0; k < n; ++k)
                     (*cache_)[static_cast<size_t>(star[k])] = {after_[k], {after_[n + k], after_[2 * n + k]}};

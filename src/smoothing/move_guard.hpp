@@ -41,10 +41,11 @@ public:
     StarTable& star() { return star_; }
 
 private:
-    // Star tet k passes the guard with v where star_ has it (a scalar check,
-    // for the tets most likely to fail).
-    bool tet_passes(size_t k);
-    bool acceptable(const TetMesh& mesh, const std::vector<FaceKey>& surface_faces);
+    // Star tet k passes the guard with v at x (a scalar check, for the tets
+    // most likely to fail).
+    bool tet_passes(size_t k, const Coords& x);
+    // v at `at` (also in mesh.points) passes the guard.
+    bool acceptable(const TetMesh& mesh, const Vec3& at, const std::vector<FaceKey>& surface_faces);
 
     GuardSettings settings_;
     ShapeCache* cache_;
