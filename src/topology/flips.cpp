@@ -24,8 +24,7 @@ using NewTets = std::vector<Tet>;
 // origin of the old tet around its centroid.
 void replace(EditableMesh& mesh, const std::vector<int32_t>& old_tets, const NewTets& fresh) {
     const int32_t region = mesh.region(old_tets.front());
-    std::vector<int32_t> origins;
-    for (const Tet& q : fresh) origins.push_back(origin_of(mesh, old_tets, q));
+    const std::vector<int32_t> origins = origins_of(mesh, old_tets, fresh);
     for (int32_t t : old_tets) mesh.remove_tet(t);
     for (size_t i = 0; i < fresh.size(); ++i) mesh.add_tet(fresh[i], region, origins[i]);
 }

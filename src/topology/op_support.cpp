@@ -102,12 +102,17 @@ size_t deepest_tet(const std::vector<TetPoints>& tets, const Vec3& x, std::array
     return best;
 }
 
-int32_t origin_of(const EditableMesh& mesh, const std::vector<int32_t>& replaced, const Tet& q) {
-    const Vec3 c = 0.25 * (mesh.point(q[0]) + mesh.point(q[1]) + mesh.point(q[2]) + mesh.point(q[3]));
+std::vector<int32_t> origins_of(const EditableMesh& mesh, const std::vector<int32_t>& replaced,
+                                const std::vector<Tet>& fresh) {
     std::vector<TetPoints> shapes;
     for (int32_t t : replaced) shapes.push_back(mesh.tet_points(t));
-    std::array<double, 4> lambda;
-    return mesh.origin(replaced[deepest_tet(shapes, c, lambda)]);
+    std::vector<int32_t> out;
+    for (const Tet& q : fresh) {
+        const Vec3 c = 0.25 * (mesh.point(q[0]) + mesh.point(q[1]) + mesh.point(q[2]) + mesh.point(q[3]));
+        std::array<double, 4> lambda;
+        out.push_back(mesh.origin(replaced[deepest_tet(shapes, c, lambda)]));
+    }
+    return out;
 }
 
 Parents blend_parents(const EditableMesh& mesh, std::initializer_list<int32_t> vs, std::initializer_list<double> ws) {

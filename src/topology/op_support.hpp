@@ -54,9 +54,10 @@ std::array<double, 4> barycentric(const TetPoints& p, const Vec3& x);
 // barycentric coordinate), with x's coordinates in it.
 size_t deepest_tet(const std::vector<TetPoints>& tets, const Vec3& x, std::array<double, 4>& lambda);
 
-// The input tet a new tet came from: the origin of the replaced tet that
-// holds its centroid most deeply.
-int32_t origin_of(const EditableMesh& mesh, const std::vector<int32_t>& replaced, const Tet& q);
+// The input tets new tets came from: for each, the origin of the replaced
+// tet that holds its centroid most deeply.
+std::vector<int32_t> origins_of(const EditableMesh& mesh, const std::vector<int32_t>& replaced,
+                                const std::vector<Tet>& fresh);
 
 // Parents of a point interpolated from mesh vertices vs[i] with weights
 // ws[i], expressed in input vertices.
