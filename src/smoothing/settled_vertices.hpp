@@ -22,6 +22,7 @@ public:
         moved_at_.clear();
         stayed_at_.clear();
         clock_ = 0;
+        ++epoch_;
     }
 
     // Starts a sweep of a mesh with `vertices` vertices in `colours` colours.
@@ -31,6 +32,7 @@ public:
             moved_at_.assign(vertices, 0);
             stayed_at_.assign(vertices, 0);
             clock_ = 0;
+            ++epoch_;
         }
         base_ = clock_;
         clock_ += ticks;
@@ -55,9 +57,17 @@ public:
     }
     void stayed(int32_t v, uint32_t tick) { stayed_at_[v] = tick; }
 
+    // For other memories of the sweeps' work (FailedFlips): when each
+    // vertex last moved (0: never), the time now, and a number that
+    // changes whenever the times start again.
+    const std::vector<uint32_t>& moved_at() const { return moved_at_; }
+    uint32_t now() const { return clock_; }
+    uint64_t epoch() const { return epoch_; }
+
 private:
     std::vector<uint32_t> moved_at_, stayed_at_;  // 0: never
     uint32_t clock_ = 0, base_ = 0;
+    uint64_t epoch_ = 0;
 };
 
 }  // namespace bodt

@@ -1,6 +1,7 @@
 #include "topology/topology_pass.hpp"
 
 #include "topology/bad_tets.hpp"
+#include "topology/failed_flips.hpp"
 #include "topology/op_support.hpp"
 
 #include <algorithm>
@@ -36,70 +37,6 @@ void relocate(EditableMesh& mesh, int32_t v, const TopologySettings& s) {
     }
     mesh.move_vertex(v, start);
 }
-
-// The flips that failed earlier in a pass, each with the clock then and the
-// vertices whose points and tets the attempt read: while none of those
-// changed, the attempt would fail again.  Bad tets cluster, so most edges
-// and faces come up from several of them.  A direct-mapped cache, not a
-// map: a record is overwritten by the next one hashing to its slot.  The
-// repeats come from neighbouring bad tets, which the pass visits close
-// together (tets are stored in curve order), so a fixed table catches most
-// of them without allocating; a map grew to millions of nodes on a large
-// mesh and cost more than the repeats it saved.
-class FailedFlips {
-public:
-    // About one slot per tet, 256 to 32768 of them.
-    explicit FailedFlips(int32_t tets) {
-        while (bits_ < 15 && (int64_t{1} << bits_) < tets) ++bits_;
-        slots_.resize(size_t{1} << bits_);
-    }
-    // Edge (a, b), directed: edge removal's tests on a surface edge are
-    // made from a's side.  Keyed as (a, b, -1); a face by its sorted vertices.
-    bool repeats(const EditableMesh& mesh, int32_t a, int32_t b) const { return repeats(mesh, FaceKey{{a, b, -1}}); }
-    bool repeats(const EditableMesh& mesh, const FaceKey& face) const {
-        const Slot& x = slots_[slot(face)];
-        if (!x.used || !(x.key == face)) return false;
-        for (int i = 0; i < x.n; ++i)
-            if (mesh.stamp(x.read[i]) > x.clock) return false;
-        return true;
-    }
-    // An edge: its ring's vertices too when edge_ring built it.
-    void record(const EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing* ring) {
-        Slot& x = fill(mesh, FaceKey{{a, b, -1}});
-        x.read[x.n++] = a;
-        x.read[x.n++] = b;
-        if (ring)
-            for (int32_t v : ring->ring) x.read[x.n++] = v;
-    }
-    // A face: the apexes of its tets too (pair: those tets, or null).
-    void record(const EditableMesh& mesh, const FaceKey& face, const int32_t* pair) {
-        Slot& x = fill(mesh, face);
-        for (int32_t v : face.v) x.read[x.n++] = v;
-        for (int k = 0; pair && k < 2; ++k)
-            for (int32_t v : mesh.tet(pair[k]))
-                if (v != face.v[0] && v != face.v[1] && v != face.v[2]) x.read[x.n++] = v;
-    }
-
-private:
-    struct Slot {
-        FaceKey key;
-        bool used = false;
-        int n = 0;
-        uint64_t clock = 0;
-        std::array<int32_t, kMaxEdgeRing + 3> read;  // an edge and its ring (one more vertex when open)
-    };
-    size_t slot(const FaceKey& k) const { return (FaceKeyHash()(k) * 0x9E3779B97F4A7C15ull) >> (64 - bits_); }
-    Slot& fill(const EditableMesh& mesh, const FaceKey& k) {
-        Slot& x = slots_[slot(k)];
-        x.key = k;
-        x.used = true;
-        x.n = 0;
-        x.clock = mesh.clock();
-        return x;
-    }
-    int bits_ = 8;
-    std::vector<Slot> slots_;
-};
 
 // Tries one edge removal or 2-3 flip among the edges and faces of t that
 // raises the worst sine of the tets involved.
@@ -143,12 +80,11 @@ bool locally_delaunay(const EditableMesh& mesh, int32_t t) {
 // reaches them too and goes on until no bad tet it meets can flip.  Every
 // flip raises a local minimum, so this ends; the cap only bounds the time
 // on a pathological mesh.
-int32_t flip_pass(EditableMesh& mesh, const TopologyRules& rules, double flip_angle_deg) {
+int32_t flip_pass(EditableMesh& mesh, const TopologyRules& rules, double flip_angle_deg, FailedFlips& failed) {
     const double below = std::sin(flip_angle_deg * kDegree);
     int32_t flips = 0;
     const int32_t cap = 2 * mesh.tet_capacity();
     EdgeRing ring;
-    FailedFlips failed(mesh.tet_capacity());
     for (int32_t t = 0; t < mesh.tet_capacity() && flips < cap; ++t) {
         if (!mesh.alive(t) || mesh.sine_at_least(t, below)) continue;
         if (rules.delaunay && locally_delaunay(mesh, t)) continue;
@@ -355,13 +291,19 @@ int32_t all_boundary_pass(EditableMesh& mesh, const TopologySettings& s, const T
 }  // namespace
 
 TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s) {
+    FailedFlips failed;
+    failed.begin_pass(mesh, nullptr);
+    return improve_topology(mesh, s, failed);
+}
+
+TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, FailedFlips& failed) {
     TopologyCounts counts;
     // The operations inside try_change make tets that only the relocation
     // after them improves: they are judged as a whole, there.
     TopologyRules loose = s.rules;
     loose.never_worse = false;
     const double bad_sine = std::sin(s.bad_angle_deg * kDegree);
-    if (s.flip) counts.flips += flip_pass(mesh, s.rules, s.flip_angle_deg);
+    if (s.flip) counts.flips += flip_pass(mesh, s.rules, s.flip_angle_deg, failed);
     if (s.swap_all_boundary) counts.flips += all_boundary_pass(mesh, s, loose);
     if (s.insert || s.collapse) {
         for (int32_t t : bad_tets_by_quality(mesh, bad_sine)) {
@@ -391,7 +333,8 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s) {
                     ++counts.collapsed;
             }
         }
-        if (s.flip && counts.inserted + counts.collapsed > 0) counts.flips += flip_pass(mesh, s.rules, s.flip_angle_deg);
+        if (s.flip && counts.inserted + counts.collapsed > 0)
+            counts.flips += flip_pass(mesh, s.rules, s.flip_angle_deg, failed);
     }
     mesh.commit();
     return counts;

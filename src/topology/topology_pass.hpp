@@ -6,6 +6,7 @@
 // the worst dihedral sine of the tets it touched went up.
 #pragma once
 
+#include "topology/failed_flips.hpp"
 #include "topology/operations.hpp"
 
 #include <cstdint>
@@ -37,5 +38,8 @@ struct TopologyCounts {
 };
 
 TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& settings);
+// The same with the caller's memory of failed flips, begun on `mesh`
+// (failed.begin_pass), which may hold the failures of earlier passes.
+TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& settings, FailedFlips& failed);
 
 }  // namespace bodt
