@@ -14,6 +14,11 @@
  *               that make the library forget the skips before every step
  *               (a parameter set to its value), on 1 and 2 threads, with
  *               fewer trial moves (some skips happened) and the same moves
+ *   flip_memory B-ODT with flips and insertion remembers the flips that
+ *               failed across steps while the sweeps report every move: 30
+ *               steps on a lazy mesh (flips in many of them) give the same
+ *               vertices, tets and step reports as runs that forget before
+ *               every step, on 1 and 2 threads
  */
 #include "api_checks.h"
 #include "bodt.h"
@@ -162,11 +167,48 @@ static void test_settled(void **state) {
     }
 }
 
+/* Runs a and b did the same; b may have tried more moves (a skipped some:
+ * a skipped vertex is not counted as rejected) when `fewer_tries`. */
+static void assert_same_run(const run_result *a, const run_result *b, int fewer_tries, const char *what) {
+    for (int k = 0; k < MAX_STEPS; ++k) {
+        const bodt_step_report *x = &a->reports[k], *y = &b->reports[k];
+        const int tries_differ = fewer_tries ? x->moves_rejected > y->moves_rejected : x->moves_rejected != y->moves_rejected;
+        if (x->vertices_moved != y->vertices_moved || tries_differ || x->moves_shortened != y->moves_shortened ||
+            x->max_move != y->max_move ||
+            x->flips != y->flips || x->vertices_inserted != y->vertices_inserted ||
+            x->min_dihedral != y->min_dihedral || x->max_dihedral != y->max_dihedral ||
+            x->min_stretch != y->min_stretch)
+            fail_msg("step %d: %s (flips %d vs %d, inserted %d vs %d, min %.17g vs %.17g)", k + 1, what, x->flips,
+                     y->flips, x->vertices_inserted, y->vertices_inserted, x->min_dihedral, y->min_dihedral);
+    }
+    assert_int_equal(a->nverts, b->nverts);
+    assert_int_equal(a->ntets, b->ntets);
+    if (memcmp(a->xyz, b->xyz, 3 * (size_t)a->nverts * sizeof *a->xyz) != 0) fail_msg("vertices: %s", what);
+    if (memcmp(a->tets, b->tets, 4 * (size_t)a->ntets * sizeof *a->tets) != 0) fail_msg("tets: %s", what);
+}
+
+static void test_flip_memory(void **state) {
+    (void)state;
+    test_mesh *m = calloc(1, sizeof *m);
+    assert_non_null(m);
+    cleanup_add(m, cleanup_free_test_mesh);
+    assert_int_equal(tm_make_lazy(m, 300, 3), 0);
+    const run_result kept = run_steps(m, BODT_MODE_BODT, -1, 1, MAX_STEPS, 0);
+    const run_result forgot = run_steps(m, BODT_MODE_BODT, -1, 1, MAX_STEPS, 1);
+    const run_result two = run_steps(m, BODT_MODE_BODT, -1, 2, MAX_STEPS, 0);
+    int steps_with_flips = 0;
+    for (int k = 1; k < MAX_STEPS; ++k) steps_with_flips += kept.reports[k].flips > 0;
+    if (steps_with_flips < 3) fail_msg("flips after the first step in %d steps: too few to test the memory", steps_with_flips);
+    assert_same_run(&kept, &forgot, 1, "differ with and without the memories of the steps before");
+    assert_same_run(&kept, &two, 0, "differ on 2 threads from 1 thread");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_teardown(test_param, cleanup_teardown),
         cmocka_unit_test_teardown(test_same_result_on_any_number_of_threads, cleanup_teardown),
         cmocka_unit_test_teardown(test_settled, cleanup_teardown),
+        cmocka_unit_test_teardown(test_flip_memory, cleanup_teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

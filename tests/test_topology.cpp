@@ -74,6 +74,12 @@
 //   sine_bounds          sine_at_least agrees with min_dihedral_sine at and
 //                        around every tet's sine, with and without bounds,
 //                        and after a move drops the bounds of the star
+//   failed_flips         a failed flip's record holds while none of its
+//                        vertices changed: in its pass, until a move or a
+//                        tet change stamps one; in a later pass (a new
+//                        EditableMesh), until the sweeps' history says one
+//                        moved after it, one is stamped, the history's
+//                        epoch changes or a pass comes without a history
 //   stamps               a move, an added or removed tet advance the clock
 //                        and the stamps of exactly the vertices touched;
 //                        a rollback advances them again, never back
@@ -85,6 +91,7 @@
 #include "quality/tet_geometry.hpp"
 #include "topology/bad_tets.hpp"
 #include "topology/editable_mesh.hpp"
+#include "topology/failed_flips.hpp"
 #include "topology/operations.hpp"
 #include "topology/topology_pass.hpp"
 
@@ -1808,6 +1815,96 @@ void test_sine_bounds(void**) {
     agrees(em, "bounds after a move");
 }
 
+void test_failed_flips(void**) {
+    const Case c = kuhn_box(2, 0.2, 61, true);
+    // An interior edge of the box and its ring; a face and its two tets.
+    EditableMesh first(c.mesh, c.classes);
+    bodt::EdgeRing ring;
+    int32_t a = -1, b = -1;
+    for (int32_t t = 0; t < first.tet_capacity() && a < 0; ++t)
+        for (const auto& e : bodt::kEdgeVertex) {
+            const Tet& q = first.tet(t);
+            if (first.vertex_class(q[e[0]]) == bodt::VertexClass::Interior && first.edge_ring(q[e[0]], q[e[1]], ring)) {
+                a = q[e[0]];
+                b = q[e[1]];
+                break;
+            }
+        }
+    assert_true(a >= 0);
+    const auto edge_read = [&](int32_t v) {
+        return v == a || v == b || std::count(ring.ring.begin(), ring.ring.end(), v) > 0;
+    };
+    // An interior face with a vertex (`face_only`) the edge's record did not read.
+    FaceKey face{};
+    int32_t pair[2] = {-1, -1}, face_only = -1;
+    for (int32_t t = 0; t < first.tet_capacity() && face_only < 0; ++t)
+        for (const auto& f : bodt::kFaceVertex) {
+            const Tet& q = first.tet(t);
+            const FaceKey k = FaceKey::of(q[f[0]], q[f[1]], q[f[2]]);
+            if (first.face_tets(k, pair) != 2) continue;
+            for (int32_t v : k.v)
+                if (!edge_read(v)) face_only = v;
+            if (face_only >= 0) {
+                face = k;
+                break;
+            }
+        }
+    assert_true(face_only >= 0);
+    int32_t outside = -1;  // a vertex neither record read
+    for (int32_t v = 0; v < first.num_vertices() && outside < 0; ++v)
+        if (!edge_read(v) && !bodt::holds(first.tet(pair[0]), v) && !bodt::holds(first.tet(pair[1]), v)) outside = v;
+    assert_true(outside >= 0);
+
+    std::vector<uint32_t> moved_at(static_cast<size_t>(first.num_vertices()), 0);
+    bodt::SweepHistory history{&moved_at, 10, 1};
+    bodt::FailedFlips failed;
+    failed.begin_pass(first, &history);
+    assert_false(failed.repeats(first, a, b));
+    failed.record(first, a, b, &ring);
+    failed.record(first, face, pair);
+    assert_true(failed.repeats(first, a, b));
+    assert_false(failed.repeats(first, b, a));  // directed
+    assert_true(failed.repeats(first, face));
+    // In its pass: a vertex it did not read changes nothing; a ring vertex does.
+    first.move_vertex(outside, first.point(outside));
+    assert_true(failed.repeats(first, a, b));
+    first.move_vertex(ring.ring.back(), first.point(ring.ring.back()));
+    assert_false(failed.repeats(first, a, b));
+    failed.record(first, a, b, &ring);
+    assert_true(failed.repeats(first, a, b));
+
+    // A later pass: held while the sweeps moved none of its vertices.
+    const auto next_pass = [&](const bodt::SweepHistory* h) {
+        auto em = std::make_unique<EditableMesh>(c.mesh, c.classes);
+        failed.begin_pass(*em, h);
+        return em;
+    };
+    history.now = 20;
+    moved_at[static_cast<size_t>(outside)] = 15;
+    auto second = next_pass(&history);
+    assert_true(failed.repeats(*second, a, b));
+    assert_true(failed.repeats(*second, face));
+    moved_at[static_cast<size_t>(ring.ring.front())] = 15;  // moved after the record (tick 10)
+    assert_false(failed.repeats(*second, a, b));
+    moved_at[static_cast<size_t>(ring.ring.front())] = 10;  // at the record's time: before it was made
+    assert_true(failed.repeats(*second, a, b));
+    second->move_vertex(face_only, second->point(face_only));  // stamped in this pass
+    assert_false(failed.repeats(*second, face));
+    assert_true(failed.repeats(*second, a, b));
+    // A new epoch, or a pass without a history, forgets everything.
+    history.epoch = 2;
+    auto third = next_pass(&history);
+    assert_false(failed.repeats(*third, a, b));
+    failed.record(*third, a, b, &ring);
+    auto fourth = next_pass(nullptr);
+    assert_false(failed.repeats(*fourth, a, b));
+    failed.record(*fourth, a, b, &ring);
+    history.epoch = 0;  // the epoch a pass without a history leaves: its records still go
+    std::fill(moved_at.begin(), moved_at.end(), 0u);
+    auto fifth = next_pass(&history);
+    assert_false(failed.repeats(*fifth, a, b));
+}
+
 void test_stamps(void**) {
     const Case c = kuhn_box(2, 0.2, 61, true);
     EditableMesh em(c.mesh, c.classes);
@@ -1910,6 +2007,7 @@ int main(void) {
         cmocka_unit_test(test_collapse_pass),
         cmocka_unit_test(test_flip_pass_plain),
         cmocka_unit_test(test_sine_bounds),
+        cmocka_unit_test(test_failed_flips),
         cmocka_unit_test(test_stamps),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

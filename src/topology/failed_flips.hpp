@@ -37,7 +37,7 @@ public:
     // `history`, records of earlier passes in the same epoch are kept;
     // without, everything is forgotten.
     void begin_pass(const EditableMesh& mesh, const SweepHistory* history) {
-        const bool keep = history && !slots_.empty() && history->epoch == epoch_;
+        const bool keep = history && remembers_ && history->epoch == epoch_;
         if (!keep) {
             bits_ = 8;
             while (bits_ < 15 && (int64_t{1} << bits_) < mesh.tet_capacity()) ++bits_;  // about a slot per tet
@@ -45,6 +45,7 @@ public:
         }
         history_ = history ? *history : SweepHistory{nullptr, 0, 0};
         epoch_ = history_.epoch;
+        remembers_ = history != nullptr;
         ++pass_;
     }
 
@@ -109,6 +110,7 @@ private:
     std::vector<Slot> slots_;
     uint32_t pass_ = 0;
     uint64_t epoch_ = 0;
+    bool remembers_ = false;  // the last pass had a history: its records may outlive it
     SweepHistory history_{nullptr, 0, 0};
 };
 

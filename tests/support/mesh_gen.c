@@ -132,6 +132,47 @@ int tm_make_box(test_mesh *m, int n, double jitter, uint64_t seed) {
     return tm_make_cubes(m, n, 1.0, NULL, NULL, jitter, seed);
 }
 
+int tm_make_lazy(test_mesh *m, int npoints, uint64_t seed) {
+    if (tm_make_box(m, 1, 0.0, seed) != 0) return -1;
+    double *xyz = realloc(m->xyz, 3 * sizeof *xyz * (size_t)(m->nverts + npoints));
+    if (xyz) m->xyz = xyz;
+    int32_t *tets = realloc(m->tets, 4 * sizeof *tets * (size_t)(m->ntets + 3 * npoints));
+    if (tets) m->tets = tets;
+    if (!xyz || !tets) {
+        tm_free(m);
+        return -1;
+    }
+    tm_rng rng;
+    tm_rng_seed(&rng, seed);
+    for (int i = 0; i < npoints; ++i) {
+        double p[3];
+        for (int a = 0; a < 3; ++a) p[a] = 0.02 + 0.96 * tm_rng_uniform(&rng);
+        for (int32_t t = 0; t < m->ntets; ++t) {
+            int32_t *q = &m->tets[4 * t];
+            const double *x[4] = {m->xyz + 3 * q[0], m->xyz + 3 * q[1], m->xyz + 3 * q[2], m->xyz + 3 * q[3]};
+            const double whole = tm_orient6(x[0], x[1], x[2], x[3]);
+            double lowest = 1.0; /* p's smallest barycentric coordinate */
+            for (int k = 0; k < 4; ++k) {
+                const double *y[4] = {x[0], x[1], x[2], x[3]};
+                y[k] = p;
+                const double l = tm_orient6(y[0], y[1], y[2], y[3]) / whole;
+                if (l < lowest) lowest = l;
+            }
+            if (lowest < 1e-3) continue;
+            const int32_t v = m->nverts++;
+            memcpy(m->xyz + 3 * v, p, sizeof p);
+            const int32_t old[4] = {q[0], q[1], q[2], q[3]};
+            for (int k = 0; k < 4; ++k) { /* corner k replaced by p: positive as the old tet */
+                int32_t *r = k == 0 ? q : &m->tets[4 * m->ntets++];
+                memcpy(r, old, sizeof old);
+                r[k] = v;
+            }
+            break;
+        }
+    }
+    return 0;
+}
+
 void tm_free(test_mesh *m) {
     free(m->xyz);
     free(m->tets);

@@ -48,6 +48,12 @@ int tm_make_cubes(test_mesh *m, int n, double size, tm_cube_filter keep, void *u
                   uint64_t seed);
 /* tm_make_cubes for the unit box [0, 1]^3 with every cube kept. */
 int tm_make_box(test_mesh *m, int n, double jitter, uint64_t seed);
+/* The unit cube's six Kuhn tets, then `npoints` random points inside,
+ * each splitting the tet that holds it 1 -> 4 (points closer than a
+ * thousandth of the tet's volume to one of its faces are dropped): a
+ * "lazy" mesh full of needles and slivers, as the bench's rand.lazy.
+ * Returns 0, or -1 when out of memory. */
+int tm_make_lazy(test_mesh *m, int npoints, uint64_t seed);
 void tm_free(test_mesh *m);
 
 /* Number of interior (not boundary) vertices. */
