@@ -40,7 +40,9 @@ public:
         const bool keep = history && remembers_ && history->epoch == epoch_;
         if (!keep) {
             bits_ = 8;
-            while (bits_ < 15 && (int64_t{1} << bits_) < mesh.tet_capacity()) ++bits_;  // about a slot per tet
+            // A slot per four tets, 256 to 32768 of them: bad tets are few,
+            // and the table is kept from step to step.
+            while (bits_ < 15 && (int64_t{4} << bits_) < mesh.tet_capacity()) ++bits_;
             slots_.assign(size_t{1} << bits_, Slot());
         }
         history_ = history ? *history : SweepHistory{nullptr, 0, 0};
