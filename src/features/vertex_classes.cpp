@@ -65,7 +65,7 @@ std::vector<char> fin_vertices(const TetMesh& mesh) {
             if (s < 0 || mesh.regions[s] != mesh.regions[t]) continue;
             const Tet& q = mesh.tets[t];
             const int32_t a = q[kFaceVertex[i][0]], b = q[kFaceVertex[i][1]], c = q[kFaceVertex[i][2]];
-            if (marked[a] && marked[b] && marked[c] && mesh.is_marked_face(t, i)) fin[a] = fin[b] = fin[c] = 1;
+            if (mesh.is_marked_face(t, i, marked)) fin[a] = fin[b] = fin[c] = 1;
         }
     return fin;
 }

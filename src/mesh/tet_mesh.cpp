@@ -160,13 +160,16 @@ std::vector<uint8_t> TetMesh::marked_face_vertices() const {
     return marked;
 }
 
-bool TetMesh::is_surface_face(int32_t t, int i, const std::vector<uint8_t>& marked) const {
-    const int32_t s = neighbors[t][i];
-    if (s < 0 || regions[s] != regions[t]) return true;
+bool TetMesh::is_marked_face(int32_t t, int i, const std::vector<uint8_t>& marked) const {
     const Tet& q = tets[t];
     for (int k = 0; k < 3; ++k)
         if (!marked[q[kFaceVertex[i][k]]]) return false;
     return is_marked_face(t, i);
+}
+
+bool TetMesh::is_surface_face(int32_t t, int i, const std::vector<uint8_t>& marked) const {
+    const int32_t s = neighbors[t][i];
+    return s < 0 || regions[s] != regions[t] || is_marked_face(t, i, marked);
 }
 
 // An interior surface face is listed once, from the side it points out of:

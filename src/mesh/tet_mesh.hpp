@@ -183,8 +183,9 @@ public:
     bool is_marked_face(int32_t t, int i) const;
     // For loops over every face: 1 for each vertex of a marked face, so
     // that the marker table is searched only for faces whose three vertices
-    // all have it.
+    // all have it (is_marked_face with `marked`).
     std::vector<uint8_t> marked_face_vertices() const;
+    bool is_marked_face(int32_t t, int i, const std::vector<uint8_t>& marked) const;
 
 private:
     // is_surface_face() with marked_face_vertices() at hand.
