@@ -49,7 +49,8 @@
 //   two_regions          interface: flips and edge removal refused, splits
 //                        keep each region's volume
 //   rollback             nested checkpoints over random operations restore
-//                        the written mesh exactly
+//                        the written mesh exactly, and each vertex's list
+//                        of tets in its order
 //   random_operations    thousands of random operations on a jittered box,
 //                        a two-region box, an L-shape with a feature line on
 //                        a face and a box with a marked inner face (fin),
@@ -1366,6 +1367,14 @@ OpKind random_kind(std::mt19937& rng, int32_t tets, int32_t start) {
     return static_cast<OpKind>(k);
 }
 
+// Each vertex's tets in the order the mesh keeps them (the order of the
+// sums and rings made from them).
+std::vector<std::vector<int32_t>> tet_lists(const EditableMesh& em) {
+    std::vector<std::vector<int32_t>> out;
+    for (int32_t v = 0; v < em.num_vertices(); ++v) out.push_back(em.tets_of(v));
+    return out;
+}
+
 void test_rollback(void**) {
     const char* what = "rollback";
     const Case c = kuhn_box(3, 0.25, 8, true);
@@ -1379,20 +1388,24 @@ void test_rollback(void**) {
         assert_int_equal(pre, 5);
         em.commit();
         const TetMesh s0 = written(em);
+        const auto lists0 = tet_lists(em);
         const int32_t cap0 = em.tet_capacity(), nv0 = em.num_vertices();
         const size_t m0 = em.checkpoint();
         int done = 0;
         for (int i = 0; i < 40; ++i) done += random_op(em, rng, static_cast<OpKind>(i % kNumOps), loose_rules());
         const TetMesh s1 = written(em);
+        const auto lists1 = tet_lists(em);
         const size_t m1 = em.checkpoint();
         for (int i = 0; i < 40; ++i) done += random_op(em, rng, static_cast<OpKind>((i + 3) % kNumOps), loose_rules());
         assert_true(done > 20);
         check_valid(em, ref, what);
         em.rollback(m1);
         expect_same(written(em), s1, "rollback to the inner checkpoint");
+        assert_true(tet_lists(em) == lists1);
         check_valid(em, ref, what);
         em.rollback(m0);
         expect_same(written(em), s0, "rollback to the outer checkpoint");
+        assert_true(tet_lists(em) == lists0);
         assert_int_equal(em.tet_capacity(), cap0);
         assert_int_equal(em.num_vertices(), nv0);
         check_valid(em, ref, what);

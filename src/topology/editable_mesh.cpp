@@ -237,19 +237,24 @@ void EditableMesh::neighbors(int32_t v, std::vector<int32_t>& out) const {
 
 // ------------------------------------------------------------------ changes
 
-void EditableMesh::attach(int32_t t) {
-    for (int32_t v : tets_[t]) {
-        vtets_[v].push_back(t);
-        stamp_[v] = ++clock_;
+void EditableMesh::attach(int32_t t, const std::array<int32_t, 4>* at) {
+    for (int i = 0; i < 4; ++i) {
+        auto& list = vtets_[tets_[t][i]];
+        list.insert(at ? list.begin() + (*at)[i] : list.end(), t);
+        stamp_[tets_[t][i]] = ++clock_;
     }
 }
 
-void EditableMesh::detach(int32_t t) {
-    for (int32_t v : tets_[t]) {
-        auto& list = vtets_[v];
-        list.erase(std::find(list.begin(), list.end(), t));
-        stamp_[v] = ++clock_;
+std::array<int32_t, 4> EditableMesh::detach(int32_t t) {
+    std::array<int32_t, 4> at;
+    for (int i = 0; i < 4; ++i) {
+        auto& list = vtets_[tets_[t][i]];
+        const auto it = std::find(list.begin(), list.end(), t);
+        at[i] = static_cast<int32_t>(it - list.begin());
+        list.erase(it);
+        stamp_[tets_[t][i]] = ++clock_;
     }
+    return at;
 }
 
 int32_t EditableMesh::add_vertex(const Vec3& p, VertexClass cls, Parents parents) {
@@ -298,7 +303,7 @@ int32_t EditableMesh::add_tet(const Tet& q, int32_t region, int32_t origin) {
 }
 
 void EditableMesh::remove_tet(int32_t t) {
-    detach(t);
+    removed_at_.push_back(detach(t));
     removed_[t] = tets_[t];
     tets_[t] = {-1, -1, -1, -1};
     journal_.push_back({Change::RemoveTet, t, {}, 0, Vec3::Zero(), 0, {}});
@@ -368,7 +373,8 @@ void EditableMesh::rollback(size_t mark) {
                 tets_[e.index] = removed_[e.index];
                 sine_[e.index] = kUnknownSine;
                 if (!sine_floor_.empty()) sine_floor_[e.index] = kNoSineFloor;
-                attach(e.index);
+                attach(e.index, &removed_at_.back());
+                removed_at_.pop_back();
                 break;
             case Change::SetMarker:
                 if (e.old_marker == kNoMarker) markers_.erase(e.face);

@@ -117,6 +117,7 @@ public:
     void commit() {
         journal_.clear();
         old_parents_.clear();
+        removed_at_.clear();
     }
 
 private:
@@ -132,8 +133,12 @@ private:
         EdgeKey edge;       // feature edges
         CallerRef caller;   // feature edges: the caller's ref, if the caller's
     };
-    void detach(int32_t t);
-    void attach(int32_t t);
+    // detach returns where t was in each of its vertices' lists; attach puts
+    // it back there (a rollback restores the lists' order too: the order of
+    // a vertex's tets decides the order of sums and rings), or, without
+    // `at`, at their ends.
+    std::array<int32_t, 4> detach(int32_t t);
+    void attach(int32_t t, const std::array<int32_t, 4>* at = nullptr);
     // Sets v's point and forgets the sines of its tets.
     void place(int32_t v, const Vec3& p);
 
@@ -155,6 +160,7 @@ private:
     EdgeSet features_;         // every feature edge the classes came from, plus the caller's
     std::vector<Entry> journal_;
     std::vector<Parents> old_parents_;  // SetParents entries, in order
+    std::vector<std::array<int32_t, 4>> removed_at_;  // RemoveTet entries, in order: detach's places
     int32_t input_vertices_;
 };
 
