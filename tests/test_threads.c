@@ -15,8 +15,9 @@
  *               (a parameter set to its value), on 1 and 2 threads, with
  *               fewer trial moves (some skips happened) and the same moves
  *   flip_memory B-ODT with flips and insertion remembers the flips that
- *               failed across steps while the sweeps report every move: 30
- *               steps on a lazy mesh (flips in many of them) give the same
+ *               failed, and the bad tets no flip or insertion fixed, across
+ *               steps while the sweeps report every move: 30 steps on a
+ *               lazy mesh (flips in many of them, then none) give the same
  *               vertices, tets and step reports as runs that forget before
  *               every step, on 1 and 2 threads
  */

@@ -83,7 +83,14 @@
 //                        epoch changes or a pass comes without a history
 //   stamps               a move, an added or removed tet advance the clock
 //                        and the stamps of exactly the vertices touched;
-//                        a rollback advances them again, never back
+//                        a rollback gives every stamp back, and the clock
+//                        goes on
+//   stuck_tets           a bad tet's failed attempts hold in later passes
+//                        while no vertex of the tets around it moved after
+//                        them or is stamped (a change rolled back is not);
+//                        a failure keeps the other attempt's record only
+//                        while that holds; an epoch or a pass without a
+//                        history forgets them
 #include "common/error.hpp"
 #include "features/vertex_classes.hpp"
 #include "mesh/mesh_builder.hpp"
@@ -93,6 +100,7 @@
 #include "topology/bad_tets.hpp"
 #include "topology/editable_mesh.hpp"
 #include "topology/failed_flips.hpp"
+#include "topology/stuck_tets.hpp"
 #include "topology/operations.hpp"
 #include "topology/topology_pass.hpp"
 
@@ -1939,16 +1947,125 @@ void test_stamps(void**) {
     em.move_vertex(5, em.point(5));
     advanced(s0, c0, {5});
     const size_t mark = em.checkpoint();
+    const std::vector<uint64_t> at_mark = stamps();
     s0 = stamps();
     c0 = em.clock();
     const Tet q = em.tet(0);
     em.remove_tet(0);
     advanced(s0, c0, {q[0], q[1], q[2], q[3]});
+    // a move, a split (a vertex and tets added, tets removed) on top
     s0 = stamps();
     c0 = em.clock();
+    em.move_vertex(q[0], em.point(q[0]));
+    advanced(s0, c0, {q[0]});
+    const Tet r = em.tet(1);
+    assert_true(bodt::split_edge(em, r[0], r[1], 0.5 * (em.point(r[0]) + em.point(r[1])), loose_rules(), 0.0) >= 0);
+    // the rollback gives every stamp back; the clock goes on
+    c0 = em.clock();
     em.rollback(mark);
-    advanced(s0, c0, {q[0], q[1], q[2], q[3]});
+    assert_true(stamps() == at_mark);
+    assert_true(em.clock() > c0);
     assert_true(em.alive(0));
+}
+
+// The vertices of the tets that share a vertex with tet t: what every
+// attempt on t reads.
+std::set<int32_t> around(const EditableMesh& em, int32_t t) {
+    std::set<int32_t> out;
+    for (int32_t v : em.tet(t))
+        for (int32_t s : em.tets_of(v)) out.insert(em.tet(s).begin(), em.tet(s).end());
+    return out;
+}
+
+void test_stuck_tets(void**) {
+    using bodt::StuckTets;
+    const Case c = kuhn_box(3, 0.2, 61, true);
+    const auto pass = [&](bodt::StuckTets& stuck, const bodt::SweepHistory* h) {
+        auto em = std::make_unique<EditableMesh>(c.mesh, c.classes);
+        stuck.begin_pass(*em, h);
+        return em;
+    };
+    // A tet with an interior vertex, a vertex around it that is not its
+    // own, and a vertex not around it.
+    EditableMesh probe(c.mesh, c.classes);
+    int32_t t = -1;
+    for (int32_t s = 0; s < probe.tet_capacity() && t < 0; ++s)
+        for (int32_t v : probe.tet(s))
+            if (probe.vertex_class(v) == bodt::VertexClass::Interior) t = s;
+    assert_true(t >= 0);
+    const std::set<int32_t> near = around(probe, t);
+    int32_t ring = -1, outside = -1;
+    for (int32_t v : near)
+        if (!bodt::holds(probe.tet(t), v)) ring = v;
+    for (int32_t v = 0; v < probe.num_vertices() && outside < 0; ++v)
+        if (!near.count(v)) outside = v;
+    assert_true(ring >= 0 && outside >= 0);
+
+    std::vector<uint32_t> moved_at(static_cast<size_t>(probe.num_vertices()), 0);
+    bodt::SweepHistory history{&moved_at, 10, 1};
+    StuckTets stuck;
+    auto first = pass(stuck, &history);
+    assert_false(stuck.stuck(*first, t, StuckTets::kFlips));
+    stuck.failed(*first, t, StuckTets::kFlips);
+    assert_false(stuck.stuck(*first, t, StuckTets::kFlips));  // its own pass: not read
+    // A later pass: held while nothing around t moved after the record.
+    history.now = 20;
+    moved_at[static_cast<size_t>(outside)] = 15;
+    auto second = pass(stuck, &history);
+    assert_true(stuck.stuck(*second, t, StuckTets::kFlips));
+    assert_false(stuck.stuck(*second, t, StuckTets::kInsertion));
+    moved_at[static_cast<size_t>(ring)] = 15;  // moved after the record (tick 10)
+    assert_false(stuck.stuck(*second, t, StuckTets::kFlips));
+    moved_at[static_cast<size_t>(ring)] = 10;  // at the record's time: before it was made
+    assert_true(stuck.stuck(*second, t, StuckTets::kFlips));
+    // Changed in this pass, then rolled back: the stamps tell both.
+    const size_t mark = second->checkpoint();
+    second->move_vertex(ring, second->point(ring));
+    assert_false(stuck.stuck(*second, t, StuckTets::kFlips));
+    second->rollback(mark);
+    assert_true(stuck.stuck(*second, t, StuckTets::kFlips));
+    // An insertion failing now keeps the flips' record, at the new time.
+    stuck.failed(*second, t, StuckTets::kInsertion);
+    history.now = 30;
+    moved_at[static_cast<size_t>(ring)] = 15;  // before the new time
+    auto third = pass(stuck, &history);
+    assert_true(stuck.stuck(*third, t, StuckTets::kFlips));
+    assert_true(stuck.stuck(*third, t, StuckTets::kInsertion));
+    // A record that no longer holds is not carried on by the other
+    // attempt's failure: ring moved after both records (tick 20), then the
+    // insertion fails again at 40.
+    moved_at[static_cast<size_t>(ring)] = 25;
+    history.now = 40;
+    auto fourth = pass(stuck, &history);
+    assert_false(stuck.stuck(*fourth, t, StuckTets::kFlips));
+    assert_false(stuck.stuck(*fourth, t, StuckTets::kInsertion));
+    stuck.failed(*fourth, t, StuckTets::kInsertion);
+    history.now = 50;
+    auto fifth = pass(stuck, &history);
+    assert_true(stuck.stuck(*fifth, t, StuckTets::kInsertion));
+    assert_false(stuck.stuck(*fifth, t, StuckTets::kFlips));
+    // A new epoch, or a pass without a history, forgets everything.
+    history.epoch = 2;
+    history.now = 60;
+    auto sixth = pass(stuck, &history);
+    assert_false(stuck.stuck(*sixth, t, StuckTets::kFlips));
+    assert_false(stuck.stuck(*sixth, t, StuckTets::kInsertion));
+    stuck.failed(*sixth, t, StuckTets::kFlips);
+    auto seventh = pass(stuck, nullptr);
+    assert_false(stuck.stuck(*seventh, t, StuckTets::kFlips));
+    stuck.failed(*seventh, t, StuckTets::kFlips);
+    history.epoch = 0;  // the epoch a pass without a history leaves: its records still go
+    history.now = 70;
+    std::fill(moved_at.begin(), moved_at.end(), 0u);
+    auto eighth = pass(stuck, &history);
+    assert_false(stuck.stuck(*eighth, t, StuckTets::kFlips));
+    // A clock too large for a record's field: no record.
+    history.now = uint32_t{1} << 30;
+    auto ninth = pass(stuck, &history);
+    stuck.failed(*ninth, t, StuckTets::kFlips);
+    history.now += 10;
+    auto tenth = pass(stuck, &history);
+    assert_false(stuck.stuck(*tenth, t, StuckTets::kFlips));
 }
 
 // A Kuhn box with one interior vertex pulled most of the way to an interior
@@ -2021,6 +2138,7 @@ int main(void) {
         cmocka_unit_test(test_flip_pass_plain),
         cmocka_unit_test(test_sine_bounds),
         cmocka_unit_test(test_failed_flips),
+        cmocka_unit_test(test_stuck_tets),
         cmocka_unit_test(test_stamps),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

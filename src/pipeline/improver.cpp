@@ -270,13 +270,13 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     settings.relocate_old = bits & BODT_OP_SMOOTH;
     EditableMesh editable(mesh, classes(mesh, surfaces));
     if (!shapes_.empty()) editable.bound_sines(shapes_);  // the sweep kept them up to date
-    // The failed flips of earlier steps stay known while the sweeps in
+    // The failed attempts of earlier steps stay known while the sweeps in
     // between report every move (the B-ODT sweeps; none without smoothing).
     const bool moves_reported = !(bits & BODT_OP_SMOOTH) || mode_ == BODT_MODE_ODT ||
                                 mode_ == BODT_MODE_BODT_BASIC || mode_ == BODT_MODE_BODT;
     const SweepHistory history{&settled_.moved_at(), settled_.now(), settled_.epoch()};
-    failed_flips_.begin_pass(editable, moves_reported ? &history : nullptr);
-    const TopologyCounts counts = improve_topology(editable, settings, failed_flips_);
+    failed_.begin_pass(editable, moves_reported ? &history : nullptr);
+    const TopologyCounts counts = improve_topology(editable, settings, failed_);
     if (!counts.changed()) return false;
     editable.write_to(mesh);
     mesh.build_topology(0, sweep_threads(params_.threads, mesh.tets.size()));

@@ -20,7 +20,7 @@
 #include "smoothing/move_guard.hpp"
 #include "smoothing/quasi_newton.hpp"
 #include "smoothing/settled_vertices.hpp"
-#include "topology/failed_flips.hpp"
+#include "topology/topology_pass.hpp"
 
 #include <cstdint>
 
@@ -102,7 +102,7 @@ private:
     // step).  Only step() moves the vertices of the handle's mesh.
     ShapeCache shapes_;
     mutable SettledVertices settled_;  // B-ODT sweeps: inner vertices that need no new try
-    FailedFlips failed_flips_;         // flips that failed, kept across steps while settled_ keeps time
+    FailedAttempts failed_;            // flips and bad tets that failed, kept across steps while settled_ keeps time
     mutable VertexClasses classes_;  // a cache: computing it changes no result
     mutable bool classes_valid_ = false;
     mutable GeometryModel geometry_;  // carried state in the phased mode, a cache otherwise

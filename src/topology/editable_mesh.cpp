@@ -271,6 +271,7 @@ int32_t EditableMesh::add_vertex(const Vec3& p, VertexClass cls, Parents parents
 
 void EditableMesh::move_vertex(int32_t v, const Vec3& p) {
     journal_.push_back({Change::MoveVertex, v, {}, 0, points_[v], 0, {}});
+    old_stamps_.push_back({stamp_[v], 0, 0, 0});
     place(v, p);
 }
 
@@ -297,12 +298,14 @@ int32_t EditableMesh::add_tet(const Tet& q, int32_t region, int32_t origin) {
     if (!sine_floor_.empty()) sine_floor_.push_back(kNoSineFloor);
     regions_.push_back(region);
     origin_.push_back(origin);
+    old_stamps_.push_back(stamps_of(q));
     attach(t);
     journal_.push_back({Change::AddTet, t, {}, 0, Vec3::Zero(), 0, {}});
     return t;
 }
 
 void EditableMesh::remove_tet(int32_t t) {
+    old_stamps_.push_back(stamps_of(tets_[t]));
     removed_at_.push_back(detach(t));
     removed_[t] = tets_[t];
     tets_[t] = {-1, -1, -1, -1};
@@ -355,13 +358,19 @@ void EditableMesh::rollback(size_t mark) {
                 vtets_.pop_back();
                 stamp_.pop_back();
                 break;
-            case Change::MoveVertex: place(e.index, e.old_point); break;
+            case Change::MoveVertex:
+                place(e.index, e.old_point);
+                stamp_[e.index] = old_stamps_.back()[0];
+                old_stamps_.pop_back();
+                break;
             case Change::SetParents:
                 parents_[e.index] = std::move(old_parents_.back());
                 old_parents_.pop_back();
                 break;
             case Change::AddTet:
                 detach(e.index);
+                restore_stamps(tets_[e.index], old_stamps_.back());
+                old_stamps_.pop_back();
                 tets_.pop_back();
                 removed_.pop_back();
                 sine_.pop_back();
@@ -375,6 +384,8 @@ void EditableMesh::rollback(size_t mark) {
                 if (!sine_floor_.empty()) sine_floor_[e.index] = kNoSineFloor;
                 attach(e.index, &removed_at_.back());
                 removed_at_.pop_back();
+                restore_stamps(tets_[e.index], old_stamps_.back());
+                old_stamps_.pop_back();
                 break;
             case Change::SetMarker:
                 if (e.old_marker == kNoMarker) markers_.erase(e.face);

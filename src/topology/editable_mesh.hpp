@@ -92,6 +92,8 @@ public:
     // A clock that every change of a vertex's point or tets advances, and
     // the time of v's last change: a test that read only vertices whose
     // stamp is at most an earlier clock() would give the same answer now.
+    // A rollback gives the vertices it restores their stamps back (the
+    // clock goes on): a test made before the checkpoint still holds.
     uint64_t clock() const { return clock_; }
     uint64_t stamp(int32_t v) const { return stamp_[v]; }
 
@@ -118,6 +120,7 @@ public:
         journal_.clear();
         old_parents_.clear();
         removed_at_.clear();
+        old_stamps_.clear();
     }
 
 private:
@@ -141,6 +144,12 @@ private:
     void attach(int32_t t, const std::array<int32_t, 4>* at = nullptr);
     // Sets v's point and forgets the sines of its tets.
     void place(int32_t v, const Vec3& p);
+    std::array<uint64_t, 4> stamps_of(const Tet& q) const {
+        return {stamp_[q[0]], stamp_[q[1]], stamp_[q[2]], stamp_[q[3]]};
+    }
+    void restore_stamps(const Tet& q, const std::array<uint64_t, 4>& old) {
+        for (int i = 0; i < 4; ++i) stamp_[q[i]] = old[i];
+    }
 
     std::vector<Vec3> points_;
     std::vector<VertexClass> cls_;
@@ -161,6 +170,7 @@ private:
     std::vector<Entry> journal_;
     std::vector<Parents> old_parents_;  // SetParents entries, in order
     std::vector<std::array<int32_t, 4>> removed_at_;  // RemoveTet entries, in order: detach's places
+    std::vector<std::array<uint64_t, 4>> old_stamps_;  // MoveVertex, AddTet, RemoveTet entries, in order
     int32_t input_vertices_;
 };
 

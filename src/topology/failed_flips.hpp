@@ -15,21 +15,13 @@
 
 #include "topology/editable_mesh.hpp"
 #include "topology/operations.hpp"
+#include "topology/sweep_history.hpp"
 
 #include <array>
 #include <cstdint>
 #include <vector>
 
 namespace bodt {
-
-// When each vertex last moved, by the clock of the sweeps between passes
-// (SettledVertices): a record from an earlier pass holds while none of its
-// vertices moved after it.  A new epoch forgets every record.
-struct SweepHistory {
-    const std::vector<uint32_t>* moved_at;  // per vertex, 0: never; may be shorter (never)
-    uint32_t now;
-    uint64_t epoch;
-};
 
 class FailedFlips {
 public:
@@ -63,11 +55,9 @@ public:
             return true;
         }
         // An earlier pass: untouched in this one, unmoved by the sweeps since.
-        const std::vector<uint32_t>* moved = history_.moved_at;
         for (int i = 0; i < x.n; ++i) {
             const int32_t v = x.read[i];
-            if (mesh.stamp(v) != 0) return false;
-            if (moved && static_cast<size_t>(v) < moved->size() && (*moved)[v] > x.tick) return false;
+            if (mesh.stamp(v) != 0 || history_.moved_after(v, x.tick)) return false;
         }
         return true;
     }

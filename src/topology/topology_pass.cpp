@@ -80,7 +80,7 @@ bool locally_delaunay(const EditableMesh& mesh, int32_t t) {
 // reaches them too and goes on until no bad tet it meets can flip.  Every
 // flip raises a local minimum, so this ends; the cap only bounds the time
 // on a pathological mesh.
-int32_t flip_pass(EditableMesh& mesh, const TopologyRules& rules, double flip_angle_deg, FailedFlips& failed) {
+int32_t flip_pass(EditableMesh& mesh, const TopologyRules& rules, double flip_angle_deg, FailedAttempts& failed) {
     const double below = std::sin(flip_angle_deg * kDegree);
     int32_t flips = 0;
     const int32_t cap = 2 * mesh.tet_capacity();
@@ -88,7 +88,9 @@ int32_t flip_pass(EditableMesh& mesh, const TopologyRules& rules, double flip_an
     for (int32_t t = 0; t < mesh.tet_capacity() && flips < cap; ++t) {
         if (!mesh.alive(t) || mesh.sine_at_least(t, below)) continue;
         if (rules.delaunay && locally_delaunay(mesh, t)) continue;
-        flips += flip_around(mesh, t, rules, ring, failed);
+        if (failed.tets.stuck(mesh, t, StuckTets::kFlips)) continue;
+        if (flip_around(mesh, t, rules, ring, failed.flips)) ++flips;
+        else failed.tets.failed(mesh, t, StuckTets::kFlips);
     }
     return flips;
 }
@@ -291,12 +293,12 @@ int32_t all_boundary_pass(EditableMesh& mesh, const TopologySettings& s, const T
 }  // namespace
 
 TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s) {
-    FailedFlips failed;
+    FailedAttempts failed;
     failed.begin_pass(mesh, nullptr);
     return improve_topology(mesh, s, failed);
 }
 
-TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, FailedFlips& failed) {
+TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, FailedAttempts& failed) {
     TopologyCounts counts;
     // The operations inside try_change make tets that only the relocation
     // after them improves: they are judged as a whole, there.
@@ -310,6 +312,7 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
             if (!mesh.alive(t)) continue;
             const BadTet bad = classify_bad_tet(mesh.tet_points(t), s.bad_angle_deg);
             if (s.insert && (bad.kind == BadTetKind::Spade || bad.kind == BadTetKind::Cap || bad.kind == BadTetKind::Sliver)) {
+                if (failed.tets.stuck(mesh, t, StuckTets::kInsertion)) continue;
                 int32_t made = 0;
                 if (try_change(mesh, t, s, [&] {
                         const std::vector<int32_t> v = insert_for(mesh, t, bad, loose);
@@ -317,6 +320,8 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
                         return v;
                     }))
                     counts.inserted += made;
+                else
+                    failed.tets.failed(mesh, t, StuckTets::kInsertion);
             } else if (s.collapse && bad.kind == BadTetKind::ShortEdge) {
                 // The shortest edge, collapsed by the position rules.
                 const TetPoints p = mesh.tet_points(t);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "topology/failed_flips.hpp"
+#include "topology/stuck_tets.hpp"
 #include "topology/operations.hpp"
 
 #include <cstdint>
@@ -37,9 +38,22 @@ struct TopologyCounts {
     bool changed() const { return flips + inserted + collapsed > 0; }
 };
 
+// What a pass knows will fail: the flips (within the pass, and from
+// earlier ones) and the bad tets (from earlier ones) that failed.
+struct FailedAttempts {
+    FailedFlips flips;
+    StuckTets tets;
+
+    // Starts a pass over `mesh`; see FailedFlips and StuckTets.
+    void begin_pass(const EditableMesh& mesh, const SweepHistory* history) {
+        flips.begin_pass(mesh, history);
+        tets.begin_pass(mesh, history);
+    }
+};
+
 TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& settings);
-// The same with the caller's memory of failed flips, begun on `mesh`
+// The same with the caller's memory of failed attempts, begun on `mesh`
 // (failed.begin_pass), which may hold the failures of earlier passes.
-TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& settings, FailedFlips& failed);
+TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& settings, FailedAttempts& failed);
 
 }  // namespace bodt

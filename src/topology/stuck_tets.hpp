@@ -1,0 +1,69 @@
+// The bad tets that no flip or no insertion could fix, remembered from one
+// step's topology pass to the next.  Every test of a flip around tet t
+// (its edges' rings, its faces' neighbours) and of an insertion for it (the
+// tets it cuts, the stars of the vertices it relocates) reads only the tets
+// that share a vertex with t, their points, and the connectivity around
+// them: while none of their vertices has moved or changed since, the
+// attempts fail again, and the pass can pass over t.  On a mesh whose
+// connectivity has settled this is most of a pass's work: the sweeps move
+// a few vertices, and the bad tets far from them keep failing.
+//
+// A record is a tet's index and the sweeps' clock, so it lives only as
+// long as the connectivity does: a new epoch (SweepHistory) forgets them
+// all, and so does a pass without a history.
+#pragma once
+
+#include "topology/editable_mesh.hpp"
+#include "topology/sweep_history.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace bodt {
+
+class StuckTets {
+public:
+    enum Attempt : uint32_t { kFlips = 1, kInsertion = 2 };
+
+    // Starts a pass over `mesh` (a new EditableMesh: every stamp 0).
+    void begin_pass(const EditableMesh& mesh, const SweepHistory* history) {
+        // Without a history nothing is kept, and no room is made for records.
+        const bool keep = history && history->epoch == epoch_ && records_.size() == static_cast<size_t>(mesh.tet_capacity());
+        if (!keep) records_.assign(history ? static_cast<size_t>(mesh.tet_capacity()) : 0, 0);
+        history_ = history ? *history : SweepHistory{nullptr, 0, 0};
+        epoch_ = history_.epoch;
+    }
+
+    // The attempt on t failed in an earlier pass, and since then no vertex
+    // of a tet sharing a vertex with t moved (sweeps) or changed (this pass).
+    bool stuck(const EditableMesh& mesh, int32_t t, Attempt attempt) const {
+        if (static_cast<size_t>(t) >= records_.size() || !(records_[t] & attempt)) return false;
+        const uint32_t tick = records_[t] >> kBits;
+        if (tick >= history_.now) return false;  // this pass's own: the stamps alone cannot tell
+        for (int32_t v : mesh.tet(t))
+            for (int32_t s : mesh.tets_of(v))
+                for (int32_t u : mesh.tet(s))
+                    if (mesh.stamp(u) != 0 || history_.moved_after(u, tick)) return false;
+        return true;
+    }
+    // The attempt on t failed now.  The other attempt's record, if it holds
+    // (stuck, or made in this pass), holds now too: both keep the new time.
+    // A pass that changes anything starts a new epoch, so a record made
+    // before a change in its own pass is never read.
+    void failed(const EditableMesh& mesh, int32_t t, Attempt attempt) {
+        if (history_.now >= kMaxTick || static_cast<size_t>(t) >= records_.size()) return;
+        const Attempt other = attempt == kFlips ? kInsertion : kFlips;
+        const bool other_holds = (records_[t] >> kBits == history_.now) ? (records_[t] & other) != 0 : stuck(mesh, t, other);
+        records_[t] = history_.now << kBits | (other_holds ? other : 0) | attempt;
+    }
+
+private:
+    static constexpr int kBits = 2;
+    static constexpr uint32_t kMaxTick = uint32_t{1} << (32 - kBits);
+
+    std::vector<uint32_t> records_;  // per tet: the sweeps' clock << kBits | the attempts that failed then
+    SweepHistory history_{nullptr, 0, 0};
+    uint64_t epoch_ = 0;
+};
+
+}  // namespace bodt
