@@ -553,7 +553,7 @@ typedef struct bodt_step_report {
     int32_t step;           /* 1 for the first step on this handle, ...  */
     int32_t vertices_moved;
     /* Vertices whose every trial move was refused.  The B-ODT sweeps do
-     * not try again an inner vertex whose move was refused while nothing
+     * not try again a vertex whose move was refused while nothing
      * around it has moved since (the verdict is known): it is not counted. */
     int32_t moves_rejected;
     int32_t moves_shortened;/* vertices moved by a halved step            */

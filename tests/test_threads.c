@@ -7,9 +7,11 @@
  * a difference here, most surely in the ASan build's slower, more
  * interleaved runs.
  *
- *   settled     B-ODT smoothing skips an inner vertex whose move was refused
+ *   settled     B-ODT smoothing skips a vertex whose move was refused
  *               while nothing in its star has moved since (its verdict is
- *               known): 30 steps of BODT (smoothing only) and of ODT give
+ *               known): 30 steps of BODT (smoothing only) and of ODT on a
+ *               jittered box, and of BODT on a slab one cube thick (every
+ *               vertex on the boundary), give
  *               the same vertices and extreme angles, bit for bit, as runs
  *               that make the library forget the skips before every step
  *               (a parameter set to its value), on 1 and 2 threads, with
@@ -132,40 +134,72 @@ static void test_same_result_on_any_number_of_threads(void **state) {
     }
 }
 
+static int bottom_layer(int i, int j, int k, int n, void *user) {
+    (void)i, (void)j, (void)n, (void)user;
+    return k == 0;
+}
+
+/* One layer of 8 x 8 cubes: every vertex on the boundary.  The vertices
+ * inside the top and bottom faces are jittered in their plane by up to
+ * 0.2 h, so the surface smoothing has work to do. */
+static test_mesh *jittered_slab(void) {
+    test_mesh *m = calloc(1, sizeof *m);
+    assert_non_null(m);
+    cleanup_add(m, cleanup_free_test_mesh);
+    const int n = 8;
+    const double h = 1.0 / n;
+    assert_int_equal(tm_make_cubes(m, n, 1.0, bottom_layer, NULL, 0.0, 0), 0);
+    tm_rng rng;
+    tm_rng_seed(&rng, 12);
+    for (int32_t v = 0; v < m->nverts; ++v) {
+        double *x = m->xyz + 3 * v;
+        if (x[0] > 0.5 * h && x[0] < 1.0 - 0.5 * h && x[1] > 0.5 * h && x[1] < 1.0 - 0.5 * h)
+            for (int a = 0; a < 2; ++a) x[a] += 0.4 * h * (tm_rng_uniform(&rng) - 0.5);
+    }
+    assert_int_equal(tm_count_interior(m), 0);
+    return m;
+}
+
+/* 30 steps of `mode` (smoothing only) with the skips, without them (the
+ * library made to forget before every step) and on 2 threads. */
+static void assert_skips_change_nothing(const test_mesh *m, int mode) {
+    const run_result kept = run_steps(m, mode, BODT_OP_SMOOTH, 1, MAX_STEPS, 0);
+    const run_result forgot = run_steps(m, mode, BODT_OP_SMOOTH, 1, MAX_STEPS, 1);
+    const run_result two = run_steps(m, mode, BODT_OP_SMOOTH, 2, MAX_STEPS, 0);
+    int64_t tries_kept = 0, tries_forgot = 0;
+    for (int k = 0; k < MAX_STEPS; ++k) {
+        const bodt_step_report *a = &kept.reports[k], *b = &forgot.reports[k], *c = &two.reports[k];
+        if (a->vertices_moved != b->vertices_moved || a->moves_shortened != b->moves_shortened ||
+            a->max_move != b->max_move || a->min_dihedral != b->min_dihedral ||
+            a->max_dihedral != b->max_dihedral || a->min_stretch != b->min_stretch ||
+            a->moves_rejected > b->moves_rejected)
+            fail_msg("mode %d step %d: moved %d vs %d, rejected %d vs %d, min %.17g vs %.17g with and without "
+                     "the skips",
+                     mode, k + 1, a->vertices_moved, b->vertices_moved, a->moves_rejected, b->moves_rejected,
+                     a->min_dihedral, b->min_dihedral);
+        if (a->vertices_moved != c->vertices_moved || a->moves_rejected != c->moves_rejected ||
+            a->min_dihedral != c->min_dihedral)
+            fail_msg("mode %d step %d: 2 threads differ from 1 (moved %d vs %d, rejected %d vs %d)", mode, k + 1,
+                     c->vertices_moved, a->vertices_moved, c->moves_rejected, a->moves_rejected);
+        tries_kept += a->vertices_moved + a->moves_rejected;
+        tries_forgot += b->vertices_moved + b->moves_rejected;
+    }
+    if (!(tries_kept < tries_forgot))
+        fail_msg("mode %d: %lld trial moves with the skips, %lld without: nothing was skipped", mode,
+                 (long long)tries_kept, (long long)tries_forgot);
+    if (memcmp(kept.xyz, forgot.xyz, 3 * (size_t)kept.nverts * sizeof *kept.xyz) != 0)
+        fail_msg("mode %d: the vertices differ with and without the skips", mode);
+    if (memcmp(kept.xyz, two.xyz, 3 * (size_t)kept.nverts * sizeof *kept.xyz) != 0)
+        fail_msg("mode %d: the vertices on 2 threads differ from 1 thread's", mode);
+}
+
 static void test_settled(void **state) {
     (void)state;
-    const test_mesh *m = jittered_box();
-    const int modes[] = {BODT_MODE_BODT, BODT_MODE_ODT};
-    for (size_t i = 0; i < sizeof modes / sizeof modes[0]; ++i) {
-        const run_result kept = run_steps(m, modes[i], BODT_OP_SMOOTH, 1, MAX_STEPS, 0);
-        const run_result forgot = run_steps(m, modes[i], BODT_OP_SMOOTH, 1, MAX_STEPS, 1);
-        const run_result two = run_steps(m, modes[i], BODT_OP_SMOOTH, 2, MAX_STEPS, 0);
-        int64_t tries_kept = 0, tries_forgot = 0;
-        for (int k = 0; k < MAX_STEPS; ++k) {
-            const bodt_step_report *a = &kept.reports[k], *b = &forgot.reports[k], *c = &two.reports[k];
-            if (a->vertices_moved != b->vertices_moved || a->moves_shortened != b->moves_shortened ||
-                a->max_move != b->max_move || a->min_dihedral != b->min_dihedral ||
-                a->max_dihedral != b->max_dihedral || a->min_stretch != b->min_stretch ||
-                a->moves_rejected > b->moves_rejected)
-                fail_msg("mode %d step %d: moved %d vs %d, rejected %d vs %d, min %.17g vs %.17g with and without "
-                         "the skips",
-                         modes[i], k + 1, a->vertices_moved, b->vertices_moved, a->moves_rejected, b->moves_rejected,
-                         a->min_dihedral, b->min_dihedral);
-            if (a->vertices_moved != c->vertices_moved || a->moves_rejected != c->moves_rejected ||
-                a->min_dihedral != c->min_dihedral)
-                fail_msg("mode %d step %d: 2 threads differ from 1 (moved %d vs %d, rejected %d vs %d)", modes[i],
-                         k + 1, c->vertices_moved, a->vertices_moved, c->moves_rejected, a->moves_rejected);
-            tries_kept += a->vertices_moved + a->moves_rejected;
-            tries_forgot += b->vertices_moved + b->moves_rejected;
-        }
-        if (!(tries_kept < tries_forgot))
-            fail_msg("mode %d: %lld trial moves with the skips, %lld without: nothing was skipped", modes[i],
-                     (long long)tries_kept, (long long)tries_forgot);
-        if (memcmp(kept.xyz, forgot.xyz, 3 * (size_t)kept.nverts * sizeof *kept.xyz) != 0)
-            fail_msg("mode %d: the vertices differ with and without the skips", modes[i]);
-        if (memcmp(kept.xyz, two.xyz, 3 * (size_t)kept.nverts * sizeof *kept.xyz) != 0)
-            fail_msg("mode %d: the vertices on 2 threads differ from 1 thread's", modes[i]);
-    }
+    const test_mesh *box = jittered_box();
+    assert_skips_change_nothing(box, BODT_MODE_BODT);
+    assert_skips_change_nothing(box, BODT_MODE_ODT);
+    /* no inner vertex: the skips are of surface and feature-line vertices */
+    assert_skips_change_nothing(jittered_slab(), BODT_MODE_BODT);
 }
 
 /* Runs a and b did the same; b may have tried more moves (a skipped some:

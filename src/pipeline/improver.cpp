@@ -138,8 +138,7 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
     const auto states = coloured_sweep(
         mesh.colouring(), threads, State{BodtSmoother(surfaces, cls), MoveGuard(guard_settings(), &shapes), {}, {}},
         [&](State& s, int32_t v, int32_t colour) {
-            const bool inner = cls.cls[v] == VertexClass::Interior;
-            if ((interior_only && !inner) || (inner && settled_.settled(mesh, v))) return;
+            if ((interior_only && cls.cls[v] != VertexClass::Interior) || settled_.settled(mesh, v)) return;
             StarTable& star = s.guard.star();
             star.gather(mesh, v);
             const bool moved = smooth_vertex(
@@ -149,7 +148,7 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
                 },
                 s.report);
             if (moved) settled_.moved(v, settled_.tick(colour));
-            else if (inner) settled_.stayed(v, settled_.tick(colour));
+            else settled_.stayed(v, settled_.tick(colour));
         });
     merge_counts(states, report);
 }

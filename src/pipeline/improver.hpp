@@ -101,7 +101,7 @@ private:
     // the connectivity (the phased mode, topology passes, a rolled-back
     // step).  Only step() moves the vertices of the handle's mesh.
     ShapeCache shapes_;
-    mutable SettledVertices settled_;  // B-ODT sweeps: inner vertices that need no new try
+    mutable SettledVertices settled_;  // B-ODT sweeps: vertices that need no new try
     FailedAttempts failed_;            // flips and bad tets that failed, kept across steps while settled_ keeps time
     mutable VertexClasses classes_;  // a cache: computing it changes no result
     mutable bool classes_valid_ = false;

@@ -1,8 +1,11 @@
-// The inner vertices a B-ODT sweep need not try again.  An inner vertex
-// that stayed where it was at its last visit (the guard refused every trial
-// move, or the model had no minimum) stays again while no vertex of its star
-// has moved since: the same star gives the same target (eq. 3) and the same
-// verdict, so skipping it changes no result.  Time is counted in colours of
+// The vertices a B-ODT sweep need not try again.  A vertex that stayed
+// where it was at its last visit (the guard refused every trial move, or
+// the model had no minimum) stays again while no vertex of its star has
+// moved since: the same star gives the same target and the same verdict, so
+// skipping it changes no result.  An inner vertex's target (eq. 3) reads
+// its star; a boundary vertex's (eqs. 5-10) its star, its surface one-rings
+// and their normals (ring vertices are star vertices), and its feature-line
+// neighbours (star vertices too).  Time is counted in colours of
 // the sweeps (one tick per colour; vertices of one colour share no tet), so
 // the answer does not depend on the threads.  The owner clears it whenever
 // the connectivity, the mesh data, the mode or a parameter changes.

@@ -54,7 +54,7 @@ public:
         if (history_.now >= kMaxTick || static_cast<size_t>(t) >= records_.size()) return;
         const Attempt other = attempt == kFlips ? kInsertion : kFlips;
         const bool other_holds = (records_[t] >> kBits == history_.now) ? (records_[t] & other) != 0 : stuck(mesh, t, other);
-        records_[t] = history_.now << kBits | (other_holds ? other : 0) | attempt;
+        records_[t] = history_.now << kBits | (other_holds ? uint32_t{other} : 0u) | attempt;
     }
 
 private:
