@@ -183,8 +183,10 @@ public:
     bool is_marked_face(int32_t t, int i) const;
     // For loops over every face: 1 for each vertex of a marked face, so
     // that the marker table is searched only for faces whose three vertices
-    // all have it (is_marked_face with `marked`).
+    // all have it.
     std::vector<uint8_t> marked_face_vertices() const;
+    // is_marked_face(t, i), without the table's lookup when a vertex of the
+    // face is not in `marked` (marked_face_vertices()).
     bool is_marked_face(int32_t t, int i, const std::vector<uint8_t>& marked) const;
 
 private:

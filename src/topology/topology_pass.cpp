@@ -1,7 +1,6 @@
 #include "topology/topology_pass.hpp"
 
 #include "topology/bad_tets.hpp"
-#include "topology/failed_flips.hpp"
 #include "topology/op_support.hpp"
 
 #include <algorithm>
