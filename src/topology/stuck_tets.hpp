@@ -1,10 +1,11 @@
 // The bad tets that no flip or no insertion could fix, remembered from one
 // step's topology pass to the next.  Every test of a flip around tet t
-// (its edges' rings, its faces' neighbours) and of an insertion for it (the
-// tets it cuts, the stars of the vertices it relocates) reads only the tets
-// that share a vertex with t, their points, and the connectivity around
-// them: while none of their vertices has moved or changed since, the
-// attempts fail again, and the pass can pass over t.  On a mesh whose
+// (its edges' rings, its faces' neighbours, the faces and edges the new
+// tets would make) reads only the tets that share an edge with t, their
+// points, and the connectivity around their vertices; an insertion for t
+// (the tets it cuts, the stars of the vertices it relocates) reads the
+// tets that share a vertex with t.  While none of their vertices has moved
+// or changed since, the attempt fails again, and the pass can pass over t.  On a mesh whose
 // connectivity has settled this is most of a pass's work: the sweeps move
 // a few vertices, and the bad tets far from them keep failing.
 //
@@ -35,15 +36,20 @@ public:
     }
 
     // The attempt on t failed in an earlier pass, and since then no vertex
-    // of a tet sharing a vertex with t moved (sweeps) or changed (this pass).
+    // of a tet sharing an edge (flips) or a vertex (insertion) with t moved
+    // (sweeps) or changed (this pass).
     bool stuck(const EditableMesh& mesh, int32_t t, Attempt attempt) const {
         if (static_cast<size_t>(t) >= records_.size() || !(records_[t] & attempt)) return false;
         const uint32_t tick = records_[t] >> kBits;
         if (tick >= history_.now) return false;  // this pass's own: the stamps alone cannot tell
-        for (int32_t v : mesh.tet(t))
-            for (int32_t s : mesh.tets_of(v))
-                for (int32_t u : mesh.tet(s))
+        const Tet& q = mesh.tet(t);
+        for (int32_t v : q)
+            for (int32_t s : mesh.tets_of(v)) {
+                const Tet& n = mesh.tet(s);
+                if (attempt == kFlips && shared_vertices(q, n) < 2) continue;
+                for (int32_t u : n)
                     if (mesh.stamp(u) != 0 || history_.moved_after(u, tick)) return false;
+            }
         return true;
     }
     // The attempt on t failed now.  The other attempt's record, if it holds
@@ -58,6 +64,12 @@ public:
     }
 
 private:
+    static int shared_vertices(const Tet& a, const Tet& b) {
+        int n = 0;
+        for (int32_t v : b) n += holds(a, v);
+        return n;
+    }
+
     static constexpr int kBits = 2;
     static constexpr uint32_t kMaxTick = uint32_t{1} << (32 - kBits);
 
