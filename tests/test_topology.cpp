@@ -55,7 +55,8 @@
 //                        a two-region box, an L-shape with a feature line on
 //                        a face and a box with a marked inner face (fin),
 //                        every invariant after every change, a rebuilt
-//                        EditableMesh now and then
+//                        EditableMesh now and then (the neighbours and
+//                        shapes it carries over are those a full build finds)
 //   min_dihedral_sine    against dihedral_angles
 //   classify_bad_tet     sliver, cap, spade, short edge, good
 //   insertion            a sliver, a cap and a spade inside small meshes:
@@ -86,16 +87,20 @@
 //                        a rollback gives every stamp back, and the clock
 //                        goes on
 //   stuck_tets           a bad tet's failed attempts hold in later passes
-//                        while no vertex of the tets around it moved after
-//                        them or is stamped (a change rolled back is not);
+//                        while no vertex of the tets sharing an edge
+//                        (flips) or a vertex (insertion) with it moved
+//                        after them or is stamped (a change rolled back is not);
 //                        a failure keeps the other attempt's record only
 //                        while that holds; an epoch or a pass without a
 //                        history forgets them
+//   carried_over         the neighbours and shapes carried over after a
+//                        pass are those a full build finds
 #include "common/error.hpp"
 #include "features/vertex_classes.hpp"
 #include "mesh/mesh_builder.hpp"
 #include "mesh/region_surfaces.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "quality/mesh_quality.hpp"
 #include "quality/tet_geometry.hpp"
 #include "topology/bad_tets.hpp"
 #include "topology/editable_mesh.hpp"
@@ -1480,6 +1485,27 @@ std::vector<RandomCase> random_cases() {
     return out;
 }
 
+// Moves every fifth interior vertex by a millionth of its distance to a
+// neighbour.
+void nudge_vertices(EditableMesh& em) {
+    int k = 0;
+    for (int32_t v = 0; v < em.num_vertices(); ++v) {
+        if (em.vertex_class(v) != bodt::VertexClass::Interior || em.tets_of(v).empty() || k++ % 5) continue;
+        const Tet& q = em.tet(em.tets_of(v).front());
+        const int32_t u = q[0] == v ? q[1] : q[0];
+        em.move_vertex(v, em.point(v) + 1e-6 * (em.point(u) - em.point(v)));
+    }
+}
+
+bool same_shapes(const std::vector<bodt::TetShape>& a, const std::vector<bodt::TetShape>& b) {
+    if (a.size() != b.size()) return false;
+    for (size_t t = 0; t < a.size(); ++t)
+        if (a[t].stretch != b[t].stretch || a[t].cosines.of_min != b[t].cosines.of_min ||
+            a[t].cosines.of_max != b[t].cosines.of_max)
+            return false;
+    return true;
+}
+
 void test_random_operations(void**) {
     const auto start_time = std::chrono::steady_clock::now();
     const int attempts_per_case = 2500;
@@ -1516,8 +1542,17 @@ void test_random_operations(void**) {
                 tets = alive_tets(*em);
             }
             if ((done[0] + done[1] + done[2] + done[3] + done[4] + done[5]) % 150 == 0) {
-                // a fresh EditableMesh on the written mesh: the history goes on
+                // a fresh EditableMesh on the written mesh: the history goes
+                // on.  The neighbours and shapes carried over are those a
+                // full build finds (after small moves of some vertices).
+                nudge_vertices(*em);
+                const std::vector<int32_t> written = em->written_tets();
+                const std::vector<Tet> carried = em->written_neighbors(c.mesh.neighbors, written);
+                const std::vector<bodt::TetShape> before = bodt::tet_shapes(c.mesh, 1);
                 c = reopen(*em);
+                CHECK(carried == c.mesh.neighbors, "%s: carried neighbours differ from built ones", when);
+                CHECK(same_shapes(em->written_shapes(written, before, c.mesh), bodt::tet_shapes(c.mesh, 1)),
+                      "%s: carried shapes differ from computed ones", when);
                 em = std::make_unique<EditableMesh>(c.mesh, c.classes);
                 ++reopened;
             }
@@ -1926,6 +1961,38 @@ void test_failed_flips(void**) {
     assert_false(failed.repeats(*fifth, a, b));
 }
 
+// What the rebuild after a pass carries over (written_neighbors,
+// written_shapes) is what a full build finds, after a few random changes
+// and small moves of some vertices: moved ones at each corner of some tet
+// whose other corners stayed.
+void test_carried_over(void**) {
+    const Case c = kuhn_box(5, 0.2, 17, true);
+    EditableMesh em(c.mesh, c.classes);
+    std::mt19937 rng(99);
+    int changes = 0;
+    for (int i = 0; i < 1000 && changes < 6; ++i)
+        changes += random_op(em, rng, random_kind(rng, c.mesh.num_tets(), c.mesh.num_tets()), loose_rules());
+    assert_int_equal(changes, 6);
+    std::vector<uint64_t> stamped(static_cast<size_t>(em.num_vertices()));
+    for (int32_t v = 0; v < em.num_vertices(); ++v) stamped[v] = em.stamp(v);
+    nudge_vertices(em);
+    int moved_alone[4] = {0, 0, 0, 0};
+    for (int32_t t = 0; t < c.mesh.num_tets(); ++t) {
+        if (!em.alive(t)) continue;
+        int moved = 0, at = -1;
+        for (int i = 0; i < 4; ++i)
+            if (em.stamp(em.tet(t)[i]) != 0) ++moved, at = i;
+        if (moved == 1 && stamped[em.tet(t)[at]] == 0) ++moved_alone[at];
+    }
+    for (int i = 0; i < 4; ++i) assert_true(moved_alone[i] > 0);
+    const std::vector<int32_t> written = em.written_tets();
+    const std::vector<Tet> carried = em.written_neighbors(c.mesh.neighbors, written);
+    const Case after = reopen(em);
+    assert_true(carried == after.mesh.neighbors);
+    assert_true(same_shapes(em.written_shapes(written, bodt::tet_shapes(c.mesh, 1), after.mesh),
+                            bodt::tet_shapes(after.mesh, 1)));
+}
+
 void test_stamps(void**) {
     const Case c = kuhn_box(2, 0.2, 61, true);
     EditableMesh em(c.mesh, c.classes);
@@ -1970,10 +2037,15 @@ void test_stamps(void**) {
 
 // The vertices of the tets that share a vertex with tet t: what every
 // attempt on t reads.
-std::set<int32_t> around(const EditableMesh& em, int32_t t) {
+// The vertices of the tets sharing at least `shared` vertices with t.
+std::set<int32_t> around(const EditableMesh& em, int32_t t, int shared) {
     std::set<int32_t> out;
     for (int32_t v : em.tet(t))
-        for (int32_t s : em.tets_of(v)) out.insert(em.tet(s).begin(), em.tet(s).end());
+        for (int32_t s : em.tets_of(v)) {
+            int n = 0;
+            for (int32_t u : em.tet(s)) n += bodt::holds(em.tet(t), u);
+            if (n >= shared) out.insert(em.tet(s).begin(), em.tet(s).end());
+        }
     return out;
 }
 
@@ -1985,21 +2057,24 @@ void test_stuck_tets(void**) {
         stuck.begin_pass(*em, h);
         return em;
     };
-    // A tet with an interior vertex, a vertex around it that is not its
-    // own, and a vertex not around it.
+    // A tet with an interior vertex; a vertex of a tet sharing an edge with
+    // it (read by both attempts), one of a tet sharing only a vertex (read
+    // by the insertion alone), and one of neither.
     EditableMesh probe(c.mesh, c.classes);
     int32_t t = -1;
     for (int32_t s = 0; s < probe.tet_capacity() && t < 0; ++s)
         for (int32_t v : probe.tet(s))
             if (probe.vertex_class(v) == bodt::VertexClass::Interior) t = s;
     assert_true(t >= 0);
-    const std::set<int32_t> near = around(probe, t);
-    int32_t ring = -1, outside = -1;
-    for (int32_t v : near)
+    const std::set<int32_t> near = around(probe, t, 1), edge_near = around(probe, t, 2);
+    int32_t ring = -1, corner = -1, outside = -1;
+    for (int32_t v : edge_near)
         if (!bodt::holds(probe.tet(t), v)) ring = v;
+    for (int32_t v : near)
+        if (!edge_near.count(v)) corner = v;
     for (int32_t v = 0; v < probe.num_vertices() && outside < 0; ++v)
         if (!near.count(v)) outside = v;
-    assert_true(ring >= 0 && outside >= 0);
+    assert_true(ring >= 0 && corner >= 0 && outside >= 0);
 
     std::vector<uint32_t> moved_at(static_cast<size_t>(probe.num_vertices()), 0);
     bodt::SweepHistory history{&moved_at, 10, 1};
@@ -2031,6 +2106,12 @@ void test_stuck_tets(void**) {
     auto third = pass(stuck, &history);
     assert_true(stuck.stuck(*third, t, StuckTets::kFlips));
     assert_true(stuck.stuck(*third, t, StuckTets::kInsertion));
+    // A vertex sharing only a vertex with t moved after both records: the
+    // flips never read it, the insertion's relocation does.
+    moved_at[static_cast<size_t>(corner)] = 25;
+    assert_true(stuck.stuck(*third, t, StuckTets::kFlips));
+    assert_false(stuck.stuck(*third, t, StuckTets::kInsertion));
+    moved_at[static_cast<size_t>(corner)] = 0;
     // A record that no longer holds is not carried on by the other
     // attempt's failure: ring moved after both records (tick 20), then the
     // insertion fails again at 40.
@@ -2139,6 +2220,7 @@ int main(void) {
         cmocka_unit_test(test_sine_bounds),
         cmocka_unit_test(test_failed_flips),
         cmocka_unit_test(test_stuck_tets),
+        cmocka_unit_test(test_carried_over),
         cmocka_unit_test(test_stamps),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

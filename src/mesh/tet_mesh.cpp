@@ -206,6 +206,14 @@ void TetMesh::build_topology(int base, int threads) {
     update_vertex_flags();
 }
 
+void TetMesh::build_topology(std::vector<Tet> known_neighbors) {
+    colouring_.reset();
+    build_incidence();
+    neighbors = std::move(known_neighbors);
+    order_stars_as_caller();
+    update_vertex_flags();
+}
+
 std::array<int32_t, 3> TetMesh::outward_face(int32_t t, int i) const {
     auto f = face_of(tets[t], i);
     if (!reversed.empty() && reversed[t]) std::swap(f[1], f[2]);

@@ -149,6 +149,10 @@ public:
     // Throws Error(BODT_ERR_BAD_MESH) with a message using index base
     // `base` when the connectivity is not a valid mesh.
     void build_topology(int base, int threads = 1);
+    // The same with the face neighbours known already (from the editable
+    // mesh that wrote the tets: EditableMesh::written_neighbors), for a
+    // mesh whose connectivity is valid by construction.
+    void build_topology(std::vector<Tet> known_neighbors);
 
     // The colouring of mesh/vertex_colouring.hpp, made when first asked for
     // and kept until build_topology (a copy of the mesh shares it).  Not to

@@ -277,8 +277,12 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     failed_.begin_pass(editable, moves_reported ? &history : nullptr);
     const TopologyCounts counts = improve_topology(editable, settings, failed_);
     if (!counts.changed()) return false;
+    // Most of the mesh is as it was: its neighbours and shapes are carried over.
+    const std::vector<int32_t> written = editable.written_tets();
+    std::vector<Tet> neighbors = editable.written_neighbors(mesh.neighbors, written);
     editable.write_to(mesh);
-    mesh.build_topology(0, sweep_threads(params_.threads, mesh.tets.size()));
+    mesh.build_topology(std::move(neighbors));
+    shapes_ = editable.written_shapes(written, shapes_, mesh);
     RegionSurfaces rebuilt;
     rebuilt.build(mesh, 0, BoundarySurface::Strictness::Tolerant);
     surfaces = std::move(rebuilt);
@@ -317,10 +321,7 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
             step_phased(mesh, surfaces, report);
         } else {
             if (ops() & BODT_OP_SMOOTH) sweep(mesh, surfaces, shapes_, report);
-            if (change_topology(mesh, surfaces, report)) {
-                shapes_ = ShapeCache();  // freed, then made anew
-                settled_.clear();
-            }
+            if (change_topology(mesh, surfaces, report)) settled_.clear();
         }
         for (const Vec3& p : mesh.points)
             if (!p.allFinite()) throw Error(BODT_ERR_NUMERIC, "a vertex position became non-finite");

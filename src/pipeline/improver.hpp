@@ -97,9 +97,10 @@ private:
     Params params_;
     int32_t steps_done_ = 0;
     // tet_shapes() of the mesh as the last step left it, kept up to date by
-    // the guarded sweeps; emptied by whatever else moves a vertex or changes
-    // the connectivity (the phased mode, topology passes, a rolled-back
-    // step).  Only step() moves the vertices of the handle's mesh.
+    // the guarded sweeps and carried over by the topology passes; emptied
+    // by whatever else moves a vertex or changes the connectivity (the
+    // phased mode, a rolled-back step).  Only step() moves the vertices of
+    // the handle's mesh.
     ShapeCache shapes_;
     mutable SettledVertices settled_;  // B-ODT sweeps: vertices that need no new try
     FailedAttempts failed_;            // flips and bad tets that failed, kept across steps while settled_ keeps time

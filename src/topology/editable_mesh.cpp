@@ -107,6 +107,53 @@ std::vector<int32_t> EditableMesh::write_to(TetMesh& mesh) const {
     return renumber;
 }
 
+std::vector<int32_t> EditableMesh::written_tets() const {
+    std::vector<int32_t> out(tets_.size(), -1);
+    int32_t next = 0;
+    for (int32_t t = 0; t < tet_capacity(); ++t)
+        if (alive(t)) out[t] = next++;
+    return out;
+}
+
+std::vector<Tet> EditableMesh::written_neighbors(const std::vector<Tet>& before,
+                                                 const std::vector<int32_t>& written) const {
+    std::vector<Tet> out;
+    out.reserve(tets_.size());
+    for (int32_t t = 0; t < tet_capacity(); ++t) {
+        if (!alive(t)) continue;
+        Tet n;
+        for (int i = 0; i < 4; ++i) {
+            const bool old = static_cast<size_t>(t) < before.size();
+            int32_t s = old ? before[t][i] : -1;
+            if (!old || (s >= 0 && !alive(s))) {
+                const Tet& q = tets_[t];
+                int32_t pair[2];
+                const int k = face_tets(FaceKey::of(q[kFaceVertex[i][0]], q[kFaceVertex[i][1]], q[kFaceVertex[i][2]]), pair);
+                s = -1;
+                for (int j = 0; j < k; ++j)
+                    if (pair[j] != t) s = pair[j];
+            }
+            n[i] = s < 0 ? -1 : written[s];
+        }
+        out.push_back(n);
+    }
+    return out;
+}
+
+std::vector<TetShape> EditableMesh::written_shapes(const std::vector<int32_t>& written,
+                                                   const std::vector<TetShape>& before, const TetMesh& mesh) const {
+    std::vector<TetShape> shapes(mesh.tets.size());
+    for (int32_t t = 0; t < tet_capacity(); ++t) {
+        const int32_t w = written[t];
+        if (w < 0) continue;
+        const Tet& q = tets_[t];
+        const bool kept = static_cast<size_t>(t) < before.size() && stamp_[q[0]] == 0 && stamp_[q[1]] == 0 &&
+                          stamp_[q[2]] == 0 && stamp_[q[3]] == 0;
+        shapes[w] = kept ? before[t] : tet_shape(mesh.tet_points(w));
+    }
+    return shapes;
+}
+
 TetPoints EditableMesh::tet_points(int32_t t) const {
     const Tet& q = tets_[t];
     return {points_[q[0]], points_[q[1]], points_[q[2]], points_[q[3]]};

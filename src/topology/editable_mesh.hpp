@@ -41,6 +41,22 @@ public:
     // The caller rebuilds the mesh's topology afterwards.  Returns each
     // vertex's index in `mesh` (-1: dropped).
     std::vector<int32_t> write_to(TetMesh& mesh) const;
+    // Where write_to puts each tet slot: its index in `mesh`, -1 for a
+    // removed tet.
+    std::vector<int32_t> written_tets() const;
+    // The face neighbours of the written tets (TetMesh::neighbors), from
+    // `before`, those of the mesh this one was made from, whose tet t is
+    // slot t here with the same vertices in the same order.  A face keeps
+    // its neighbour while both tets are there; only the faces of new tets
+    // and those whose neighbour went are looked up.  Neighbours are unique,
+    // so a full build gives the same.
+    std::vector<Tet> written_neighbors(const std::vector<Tet>& before, const std::vector<int32_t>& written) const;
+    // tet_shapes() of the written tets in `mesh`: a tet that is still there
+    // and none of whose vertices changed (stamp 0) keeps its shape from
+    // `before`, the shapes of the mesh this one was made from (empty: none
+    // known); the others are computed.
+    std::vector<TetShape> written_shapes(const std::vector<int32_t>& written, const std::vector<TetShape>& before,
+                                         const TetMesh& mesh) const;
 
     // ---- queries
     int32_t num_vertices() const { return static_cast<int32_t>(points_.size()); }
