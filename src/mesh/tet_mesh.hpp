@@ -112,6 +112,14 @@ public:
     // The caller's numbering of the input vertices and tets.
     CallerNumbering caller;
 
+    // Takes over what no connectivity change touches (the caller's
+    // numbering and vertex refs) from `from`, which lost its
+    // connectivity to a rewritten mesh (EditableMesh::write_to).
+    void take_caller_data(TetMesh& from) noexcept {
+        caller = std::move(from.caller);
+        input_vertex_refs = std::move(from.input_vertex_refs);
+    }
+
     int32_t num_vertices() const { return static_cast<int32_t>(points.size()); }
     int32_t num_tets() const { return static_cast<int32_t>(tets.size()); }
     int32_t num_input_vertices() const { return num_vertices() - static_cast<int32_t>(new_parents.size()); }

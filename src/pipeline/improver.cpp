@@ -17,6 +17,11 @@ namespace bodt {
 
 namespace {
 
+void require_finite(const std::vector<Vec3>& points) {
+    for (const Vec3& p : points)
+        if (!p.allFinite()) throw Error(BODT_ERR_NUMERIC, "a vertex position became non-finite");
+}
+
 void count_outcome(MoveOutcome outcome, double distance, StepReport& report) {
     switch (outcome) {
         case MoveOutcome::Moved: ++report.vertices_moved; break;
@@ -277,15 +282,21 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     failed_.begin_pass(editable, moves_reported ? &history : nullptr);
     const TopologyCounts counts = improve_topology(editable, settings, failed_);
     if (!counts.changed()) return false;
-    // Most of the mesh is as it was: its neighbours and shapes are carried over.
+    // Written into a new mesh that replaces the caller's only when all of
+    // it is built, so that a failure leaves that as it was.  Most of the
+    // mesh is as it was: its neighbours and shapes are carried over.
     const std::vector<int32_t> written = editable.written_tets();
-    std::vector<Tet> neighbors = editable.written_neighbors(mesh.neighbors, written);
-    editable.write_to(mesh);
-    mesh.build_topology(std::move(neighbors));
-    shapes_ = editable.written_shapes(written, shapes_, mesh);
+    TetMesh changed;
+    editable.write_to(changed);
+    require_finite(changed.points);
+    changed.build_topology(editable.written_neighbors(mesh.neighbors, written));
     RegionSurfaces rebuilt;
-    rebuilt.build(mesh, 0, BoundarySurface::Strictness::Tolerant);
+    rebuilt.build(changed, 0, BoundarySurface::Strictness::Tolerant);
+    ShapeCache shapes = editable.written_shapes(written, shapes_, changed);
+    changed.take_caller_data(mesh);
+    mesh = std::move(changed);
     surfaces = std::move(rebuilt);
+    shapes_ = std::move(shapes);
     mesh_data_changed();
     report.flips = counts.flips;
     report.vertices_inserted = counts.inserted;
@@ -301,43 +312,56 @@ void Improver::sweep(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& 
     else sweep_bodt(mesh, surfaces, shapes, report);
 }
 
-StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
-    const bool topology = ops() & (BODT_OP_FLIP | BODT_OP_INSERT | BODT_OP_COLLAPSE);
-    // Rolling back a step that may change connectivity needs the whole mesh.
-    const std::vector<Vec3> saved_points = topology ? std::vector<Vec3>() : mesh.points;
-    TetMesh saved_mesh;
-    RegionSurfaces saved_surfaces;
-    GeometryModel saved_geometry;
+// Paper 002's round changes the mesh in several passes: the whole mesh is
+// kept to roll back to.
+void Improver::step_phased_or_restore(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report) {
+    TetMesh saved_mesh = mesh;
+    RegionSurfaces saved_surfaces = surfaces;
+    GeometryModel saved_geometry = geometry_;
     const bool saved_geometry_valid = geometry_valid_;
-    if (topology) {
-        saved_mesh = mesh;
-        saved_surfaces = surfaces;
-        saved_geometry = geometry_;
-    }
-    StepReport report;
+    shapes_ = ShapeCache();
     try {
-        if (mode_ == BODT_MODE_PHASED_ODT) {
-            shapes_ = ShapeCache();
-            step_phased(mesh, surfaces, report);
-        } else {
-            if (ops() & BODT_OP_SMOOTH) sweep(mesh, surfaces, shapes_, report);
-            if (change_topology(mesh, surfaces, report)) settled_.clear();
+        step_phased(mesh, surfaces, report);
+        require_finite(mesh.points);
+    } catch (...) {
+        settled_.clear();
+        mesh = std::move(saved_mesh);
+        surfaces = std::move(saved_surfaces);
+        geometry_ = std::move(saved_geometry);
+        geometry_valid_ = saved_geometry_valid;
+        classes_valid_ = false;
+        throw;
+    }
+}
+
+// The other modes: the sweep moves only the points, and the connectivity
+// changes are written back all at once, at their end (change_topology).
+void Improver::sweep_and_change(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report) {
+    const bool smooth = ops() & BODT_OP_SMOOTH;
+    const std::vector<Vec3> saved_points = smooth ? mesh.points : std::vector<Vec3>();
+    try {
+        if (smooth) {
+            sweep(mesh, surfaces, shapes_, report);
+            require_finite(mesh.points);
         }
-        for (const Vec3& p : mesh.points)
-            if (!p.allFinite()) throw Error(BODT_ERR_NUMERIC, "a vertex position became non-finite");
+        if (change_topology(mesh, surfaces, report)) settled_.clear();
     } catch (...) {
         shapes_ = ShapeCache();
         settled_.clear();
-        if (topology) {
-            mesh = std::move(saved_mesh);
-            surfaces = std::move(saved_surfaces);
-            geometry_ = std::move(saved_geometry);
-            geometry_valid_ = saved_geometry_valid;
-            classes_valid_ = false;
-        } else {
-            mesh.points = saved_points;
-        }
+        classes_valid_ = false;
+        if (smooth) mesh.points = saved_points;
         throw;
+    }
+}
+
+StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
+    StepReport report;
+    if (mode_ == BODT_MODE_PHASED_ODT) {
+        step_phased_or_restore(mesh, surfaces, report);
+    } else {
+        // Made before anything changes, so that nothing after the write-back can fail.
+        if (shapes_.empty()) shapes_ = tet_shapes(mesh, sweep_threads(params_.threads, mesh.tets.size()));
+        sweep_and_change(mesh, surfaces, report);
     }
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
     if (shapes_.empty()) shapes_ = tet_shapes(mesh, threads);

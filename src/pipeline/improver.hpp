@@ -72,7 +72,7 @@ public:
 
     // One step: a smoothing sweep, then the connectivity changes (which
     // rebuild the mesh's topology and surfaces).  If anything throws, the
-    // mesh and surfaces are restored as they were.
+    // mesh and surfaces are as they were.
     StepReport step(TetMesh& mesh, RegionSurfaces& surfaces);
 
 private:
@@ -87,8 +87,11 @@ private:
                             StepReport& report) const;
     void sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes, StepReport& report);
     QuasiNewtonSettings quasi_newton_settings() const;
-    // Returns whether the connectivity changed.
+    // Returns whether the connectivity changed.  All or nothing: the mesh
+    // and surfaces are replaced at the end, or left as they were.
     bool change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
+    void sweep_and_change(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
+    void step_phased_or_restore(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
     void step_phased(TetMesh& mesh, RegionSurfaces& surfaces, StepReport& report);
     void sweep_phased(TetMesh& mesh, StepReport& report);
     void apply_reference_errors() const;
