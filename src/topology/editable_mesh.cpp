@@ -41,7 +41,6 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
       cls_(classes.cls),
       parents_(mesh.points.size()),
       tets_(mesh.tets),
-      removed_(mesh.tets.size()),
       regions_(mesh.regions),
       sine_(mesh.tets.size(), kUnknownSine),
       stamp_(mesh.points.size(), 0),
@@ -340,7 +339,6 @@ void EditableMesh::set_parents(int32_t v, Parents parents) {
 int32_t EditableMesh::add_tet(const Tet& q, int32_t region, int32_t origin) {
     const int32_t t = tet_capacity();
     tets_.push_back(q);
-    removed_.push_back({-1, -1, -1, -1});
     sine_.push_back(kUnknownSine);
     if (!sine_floor_.empty()) sine_floor_.push_back(kNoSineFloor);
     regions_.push_back(region);
@@ -353,8 +351,7 @@ int32_t EditableMesh::add_tet(const Tet& q, int32_t region, int32_t origin) {
 
 void EditableMesh::remove_tet(int32_t t) {
     old_stamps_.push_back(stamps_of(tets_[t]));
-    removed_at_.push_back(detach(t));
-    removed_[t] = tets_[t];
+    removed_.push_back({tets_[t], detach(t)});
     tets_[t] = {-1, -1, -1, -1};
     journal_.push_back({Change::RemoveTet, t, {}, 0, Vec3::Zero(), 0, {}});
 }
@@ -419,18 +416,17 @@ void EditableMesh::rollback(size_t mark) {
                 restore_stamps(tets_[e.index], old_stamps_.back());
                 old_stamps_.pop_back();
                 tets_.pop_back();
-                removed_.pop_back();
                 sine_.pop_back();
                 if (!sine_floor_.empty()) sine_floor_.pop_back();
                 regions_.pop_back();
                 origin_.pop_back();
                 break;
             case Change::RemoveTet:
-                tets_[e.index] = removed_[e.index];
+                tets_[e.index] = removed_.back().tet;
                 sine_[e.index] = kUnknownSine;
                 if (!sine_floor_.empty()) sine_floor_[e.index] = kNoSineFloor;
-                attach(e.index, &removed_at_.back());
-                removed_at_.pop_back();
+                attach(e.index, &removed_.back().at);
+                removed_.pop_back();
                 restore_stamps(tets_[e.index], old_stamps_.back());
                 old_stamps_.pop_back();
                 break;

@@ -135,7 +135,7 @@ public:
     void commit() {
         journal_.clear();
         old_parents_.clear();
-        removed_at_.clear();
+        removed_.clear();
         old_stamps_.clear();
     }
 
@@ -172,7 +172,6 @@ private:
     std::vector<uint8_t> pins_;  // the caller's kPinned bits
     std::vector<Parents> parents_;
     std::vector<Tet> tets_;  // removed: {-1, -1, -1, -1}
-    std::vector<Tet> removed_;  // the vertices of a removed tet, for rollback
     std::vector<int32_t> regions_, origin_;
     mutable std::vector<double> sine_;  // tet_sine, NaN: not known
     std::vector<double> sine_floor_;    // bound_sines, -inf: none (empty: never bounded)
@@ -185,7 +184,11 @@ private:
     EdgeSet features_;         // every feature edge the classes came from, plus the caller's
     std::vector<Entry> journal_;
     std::vector<Parents> old_parents_;  // SetParents entries, in order
-    std::vector<std::array<int32_t, 4>> removed_at_;  // RemoveTet entries, in order: detach's places
+    struct Removed {
+        Tet tet;                    // its vertices
+        std::array<int32_t, 4> at;  // detach's places
+    };
+    std::vector<Removed> removed_;  // RemoveTet entries, in order
     std::vector<std::array<uint64_t, 4>> old_stamps_;  // MoveVertex, AddTet, RemoveTet entries, in order
     int32_t input_vertices_;
 };
