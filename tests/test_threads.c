@@ -21,7 +21,9 @@
  *               steps while the sweeps report every move: 30 steps on a
  *               lazy mesh (flips in many of them, then none) give the same
  *               vertices, tets and step reports as runs that forget before
- *               every step, on 1 and 2 threads
+ *               every step, on 1 and 2 threads; the memories outlive a
+ *               change of the connectivity (some step after flips skips a
+ *               vertex); the same on a jittered box with default ops
  */
 #include "api_checks.h"
 #include "bodt.h"
@@ -236,6 +238,20 @@ static void test_flip_memory(void **state) {
     if (steps_with_flips < 3) fail_msg("flips after the first step in %d steps: too few to test the memory", steps_with_flips);
     assert_same_run(&kept, &forgot, 1, "differ with and without the memories of the steps before");
     assert_same_run(&kept, &two, 0, "differ on 2 threads from 1 thread");
+    /* The memories outlive a change of the connectivity: a step after one
+     * with flips skips vertices. */
+    int skipped_after_flips = 0;
+    for (int k = 1; k < MAX_STEPS; ++k)
+        skipped_after_flips += kept.reports[k - 1].flips > 0 && kept.reports[k].moves_rejected < forgot.reports[k].moves_rejected;
+    if (skipped_after_flips == 0) fail_msg("no step after one with flips skipped a vertex");
+    /* The same on the jittered box, whose flips reach its surface. */
+    const test_mesh *box = jittered_box();
+    const run_result box_kept = run_steps(box, BODT_MODE_BODT, -1, 1, MAX_STEPS, 0);
+    const run_result box_forgot = run_steps(box, BODT_MODE_BODT, -1, 1, MAX_STEPS, 1);
+    int box_flips = 0;
+    for (int k = 0; k < MAX_STEPS; ++k) box_flips += box_kept.reports[k].flips;
+    if (box_flips == 0) fail_msg("no flip on the jittered box");
+    assert_same_run(&box_kept, &box_forgot, 1, "jittered box: differ with and without the memories of the steps before");
 }
 
 int main(void) {

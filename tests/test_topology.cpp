@@ -95,6 +95,8 @@
 //                        history forgets them
 //   carried_over         the neighbours and shapes carried over after a
 //                        pass are those a full build finds
+//   read_differently     what a B-ODT target reads besides points (class,
+//                        one-rings in order), compared across a change
 #include "common/error.hpp"
 #include "features/vertex_classes.hpp"
 #include "mesh/mesh_builder.hpp"
@@ -102,6 +104,7 @@
 #include "mesh/tet_mesh.hpp"
 #include "quality/mesh_quality.hpp"
 #include "quality/tet_geometry.hpp"
+#include "smoothing/bodt_smoother.hpp"
 #include "topology/bad_tets.hpp"
 #include "topology/editable_mesh.hpp"
 #include "topology/failed_flips.hpp"
@@ -1993,6 +1996,39 @@ void test_carried_over(void**) {
                             bodt::tet_shapes(after.mesh, 1)));
 }
 
+// What a B-ODT target reads besides points, compared across a change:
+// nothing when nothing changed; a vertex whose class changed; the vertices
+// whose one-rings start elsewhere once the surface grows from the tets in
+// another order.
+void test_read_differently(void**) {
+    using bodt::BodtSmoother;
+    const Case c = kuhn_box(3, 0.2, 23, true);
+    bodt::RegionSurfaces surfaces;
+    surfaces.build(c.mesh, 0, bodt::BoundarySurface::Strictness::Strict);
+    assert_true(BodtSmoother::read_differently(c.classes, surfaces, c.classes, surfaces).empty());
+    bodt::VertexClasses other = c.classes;
+    const int32_t v = surfaces.surface(0).vertices().front();
+    other.cls[v] = other.cls[v] == bodt::VertexClass::Corner ? bodt::VertexClass::Surface : bodt::VertexClass::Corner;
+    assert_true(BodtSmoother::read_differently(c.classes, surfaces, other, surfaces) == std::vector<int32_t>{v});
+
+    TetMesh reordered = c.mesh;
+    std::reverse(reordered.tets.begin(), reordered.tets.end());
+    reordered.tet_origin.assign(reordered.tets.size(), 0);  // tets in the internal order
+    reordered.build_topology(0);
+    bodt::RegionSurfaces regrown;
+    regrown.build(reordered, 0, bodt::BoundarySurface::Strictness::Strict);
+    const std::vector<int32_t> found = BodtSmoother::read_differently(c.classes, surfaces, c.classes, regrown);
+    std::vector<int32_t> a, b;
+    int differ = 0;
+    for (int32_t u : surfaces.surface(0).vertices()) {
+        surfaces.surface(0).one_ring(u, a);
+        regrown.surface(0).one_ring(u, b);
+        differ += a != b;
+        assert_true((a != b) == std::binary_search(found.begin(), found.end(), u));
+    }
+    assert_true(differ > 0 && static_cast<size_t>(differ) == found.size());
+}
+
 void test_stamps(void**) {
     const Case c = kuhn_box(2, 0.2, 61, true);
     EditableMesh em(c.mesh, c.classes);
@@ -2221,6 +2257,7 @@ int main(void) {
         cmocka_unit_test(test_failed_flips),
         cmocka_unit_test(test_stuck_tets),
         cmocka_unit_test(test_carried_over),
+        cmocka_unit_test(test_read_differently),
         cmocka_unit_test(test_stamps),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

@@ -92,15 +92,19 @@ const VertexClasses& Improver::classes(const TetMesh& mesh, const RegionSurfaces
         classes_valid_ = true;
     }
     if (!classes_valid_) {
-        FeatureSettings settings;
-        settings.feature_angle_deg = params_.feature_angle;
-        settings.edge_ratio = params_.edge_ratio;
-        settings.corner_ratio = params_.corner_ratio;
-        settings.detect_features = mode_ == BODT_MODE_BODT || mode_ == BODT_MODE_NODT;
-        classes_ = classify_vertices(mesh, surfaces, settings);
+        classes_ = classify(mesh, surfaces);
         classes_valid_ = true;
     }
     return classes_;
+}
+
+VertexClasses Improver::classify(const TetMesh& mesh, const RegionSurfaces& surfaces) const {
+    FeatureSettings settings;
+    settings.feature_angle_deg = params_.feature_angle;
+    settings.edge_ratio = params_.edge_ratio;
+    settings.corner_ratio = params_.corner_ratio;
+    settings.detect_features = mode_ == BODT_MODE_BODT || mode_ == BODT_MODE_NODT;
+    return classify_vertices(mesh, surfaces, settings);
 }
 
 GuardSettings Improver::guard_settings() const {
@@ -231,6 +235,14 @@ namespace {
 
 // The relocation of paper 001's mode inside a tentative change: the
 // quasi-Newton minimiser of the vertex's weighted star objective.
+// write_to's renumbering kept the index of each of the first `vertices`
+// vertices (those the mesh had): made vertices only came after them.
+bool kept_vertex_indices(const std::vector<int32_t>& renumber, int32_t vertices) {
+    for (int32_t v = 0; v < vertices; ++v)
+        if (renumber[v] != v) return false;
+    return true;
+}
+
 RelocationTarget weighted_relocation(ElementWeights weights, const QuasiNewtonSettings& qn) {
     return [weights, qn](const EditableMesh& mesh, int32_t v, Vec3& target) {
         if (mesh.vertex_class(v) != VertexClass::Interior) return false;
@@ -284,20 +296,49 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     if (!counts.changed()) return false;
     // Written into a new mesh that replaces the caller's only when all of
     // it is built, so that a failure leaves that as it was.  Most of the
-    // mesh is as it was: its neighbours and shapes are carried over.
+    // mesh is as it was: its neighbours and shapes are carried over, and so
+    // are the records of the settled vertices.
     const std::vector<int32_t> written = editable.written_tets();
     TetMesh changed;
-    editable.write_to(changed);
+    const std::vector<int32_t> renumber = editable.write_to(changed);
     require_finite(changed.points);
     changed.build_topology(editable.written_neighbors(mesh.neighbors, written));
     RegionSurfaces rebuilt;
     rebuilt.build(changed, 0, BoundarySurface::Strictness::Tolerant);
     ShapeCache shapes = editable.written_shapes(written, shapes_, changed);
     changed.take_caller_data(mesh);
+    VertexClasses now;
+    std::vector<int32_t> touched;
+    const bool carry = classes_valid_ && kept_vertex_indices(renumber, mesh.num_vertices());
+    try {
+        if (carry) {
+            // The classes the next sweep would make (the points stay until then).
+            now = classify(changed, rebuilt);
+            touched = BodtSmoother::read_differently(classes_, surfaces, now, rebuilt);
+            for (int32_t v = 0; v < editable.num_vertices(); ++v)
+                if (editable.stamp(v) != 0 && renumber[v] >= 0) touched.push_back(renumber[v]);
+            settled_.reserve(changed.points.size());
+            failed_.tets.reserve(changed.tets.size());
+        }
+    } catch (...) {
+        mesh.take_caller_data(changed);
+        throw;
+    }
+    // Nothing below throws.
     mesh = std::move(changed);
     surfaces = std::move(rebuilt);
     shapes_ = std::move(shapes);
-    mesh_data_changed();
+    geometry_valid_ = false;
+    if (carry) {
+        // The vertices touched count as moved: the records of the failed
+        // attempts around them (kept by vertex, or carried by tet) go too.
+        classes_ = std::move(now);
+        settled_.carry_over(mesh.points.size(), touched);
+        failed_.tets.carry_over(written, mesh.tets.size());
+    } else {
+        classes_valid_ = false;
+        settled_.clear();
+    }
     report.flips = counts.flips;
     report.vertices_inserted = counts.inserted;
     report.edges_collapsed = counts.collapsed;
@@ -344,7 +385,7 @@ void Improver::sweep_and_change(TetMesh& mesh, RegionSurfaces& surfaces, StepRep
             sweep(mesh, surfaces, shapes_, report);
             require_finite(mesh.points);
         }
-        if (change_topology(mesh, surfaces, report)) settled_.clear();
+        change_topology(mesh, surfaces, report);
     } catch (...) {
         shapes_ = ShapeCache();
         settled_.clear();

@@ -76,6 +76,8 @@ public:
     StepReport step(TetMesh& mesh, RegionSurfaces& surfaces);
 
 private:
+    // The classes of the modes other than paper 002's, made anew.
+    VertexClasses classify(const TetMesh& mesh, const RegionSurfaces& surfaces) const;
     GuardSettings guard_settings() const;
     // Smoothing sweeps: Gauss-Seidel colour by colour (coloured_sweep.hpp),
     // on BODT_PARAM_THREADS threads; `shapes` (tet_shapes() of the mesh as

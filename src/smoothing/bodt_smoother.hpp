@@ -25,6 +25,15 @@ public:
     Plan target(const TetMesh& mesh, int32_t v, const StarTable& star, Vec3& target,
                 std::vector<FaceKey>& surface_faces);
 
+    // The vertices, among those of `before`, whose targets read something
+    // besides points that differs between two sets of classes and surfaces
+    // of one mesh (whose connectivity changed, every vertex keeping its
+    // index): their class, feature-line neighbours, the surfaces they lie
+    // on, or their one-ring on one of them, in its order (the order of the
+    // sums).
+    static std::vector<int32_t> read_differently(const VertexClasses& before, const RegionSurfaces& surfaces_before,
+                                                 const VertexClasses& after, const RegionSurfaces& surfaces_after);
+
 private:
     // The directions v may move in without changing any region's volume or
     // leaving its feature line: orthogonal to every ring normal, and along

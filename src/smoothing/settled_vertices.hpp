@@ -8,7 +8,8 @@
 // neighbours (star vertices too).  Time is counted in colours of
 // the sweeps (one tick per colour; vertices of one colour share no tet), so
 // the answer does not depend on the threads.  The owner clears it whenever
-// the connectivity, the mesh data, the mode or a parameter changes.
+// the mesh data, the mode or a parameter changes, and carries it over a
+// connectivity change.
 #pragma once
 
 #include "mesh/tet_mesh.hpp"
@@ -51,6 +52,23 @@ public:
             for (const int32_t u : mesh.tets[*t])
                 if (moved_at_[u] >= at) return false;
         return true;
+    }
+
+    void reserve(size_t vertices) {
+        moved_at_.reserve(vertices);
+        stayed_at_.reserve(vertices);
+    }
+    // After a connectivity change that kept every vertex's index (made
+    // vertices come after): the records stay, and the vertices in
+    // `changed` (whose star changed, which moved, or whose target reads
+    // something else that changed) count as moved now, so that they and
+    // the vertices around them are tried again.
+    void carry_over(size_t vertices, const std::vector<int32_t>& changed) {
+        if (moved_at_.empty() || clock_ == std::numeric_limits<uint32_t>::max()) return clear();
+        moved_at_.resize(vertices, 0);
+        stayed_at_.resize(vertices, 0);
+        ++clock_;
+        for (int32_t v : changed) moved(v, clock_);
     }
 
     // Every vertex that moves, inner or not, must be reported.

@@ -5,13 +5,14 @@
 // points, and the connectivity around their vertices; an insertion for t
 // (the tets it cuts, the stars of the vertices it relocates) reads the
 // tets that share a vertex with t.  While none of their vertices has moved
-// or changed since, the attempt fails again, and the pass can pass over t.  On a mesh whose
-// connectivity has settled this is most of a pass's work: the sweeps move
-// a few vertices, and the bad tets far from them keep failing.
+// or changed since, the attempt fails again, and the pass can pass over t.
+// On a mesh whose connectivity has settled this is most of a pass's work:
+// the sweeps move a few vertices, and the bad tets far from them keep
+// failing.
 //
-// A record is a tet's index and the sweeps' clock, so it lives only as
-// long as the connectivity does: a new epoch (SweepHistory) forgets them
-// all, and so does a pass without a history.
+// A record is a tet's index and the sweeps' clock: a connectivity change
+// carries it to the tet's new index (carry_over), a new epoch
+// (SweepHistory) forgets them all, and so does a pass without a history.
 #pragma once
 
 #include "topology/editable_mesh.hpp"
@@ -33,6 +34,23 @@ public:
         if (!keep) records_.assign(history ? static_cast<size_t>(mesh.tet_capacity()) : 0, 0);
         history_ = history ? *history : SweepHistory{nullptr, 0, 0};
         epoch_ = history_.epoch;
+    }
+
+    // After a connectivity change that kept every vertex's index: the
+    // record of tet slot t goes to written[t] (EditableMesh::written_tets:
+    // the tets still there first, in order), one of `tets` now; new tets
+    // have none.  The owner
+    // counts every vertex the change touched as moved (SettledVertices::
+    // carry_over), so the records around them no longer hold.  reserve()
+    // first: this does not allocate.
+    void reserve(size_t tets) { records_.reserve(tets); }
+    void carry_over(const std::vector<int32_t>& written, size_t tets) {
+        if (records_.empty()) return;
+        size_t kept = 0;  // the tets still there keep their order, first
+        for (size_t t = 0; t < records_.size(); ++t)
+            if (written[t] >= 0) records_[kept++] = records_[t];
+        records_.resize(kept);
+        records_.resize(tets, 0);
     }
 
     // The attempt on t failed in an earlier pass, and since then no vertex
