@@ -233,8 +233,6 @@ int32_t Improver::ops() const {
 
 namespace {
 
-// The relocation of paper 001's mode inside a tentative change: the
-// quasi-Newton minimiser of the vertex's weighted star objective.
 // write_to's renumbering kept the index of each of the first `vertices`
 // vertices (those the mesh had): made vertices only came after them.
 bool kept_vertex_indices(const std::vector<int32_t>& renumber, int32_t vertices) {
@@ -243,6 +241,8 @@ bool kept_vertex_indices(const std::vector<int32_t>& renumber, int32_t vertices)
     return true;
 }
 
+// The relocation of paper 001's mode inside a tentative change: the
+// quasi-Newton minimiser of the vertex's weighted star objective.
 RelocationTarget weighted_relocation(ElementWeights weights, const QuasiNewtonSettings& qn) {
     return [weights, qn](const EditableMesh& mesh, int32_t v, Vec3& target) {
         if (mesh.vertex_class(v) != VertexClass::Interior) return false;

@@ -120,14 +120,15 @@ std::vector<Tet> EditableMesh::written_neighbors(const std::vector<Tet>& before,
     out.reserve(tets_.size());
     for (int32_t t = 0; t < tet_capacity(); ++t) {
         if (!alive(t)) continue;
+        const Tet& q = tets_[t];
+        const bool old = static_cast<size_t>(t) < before.size();
         Tet n;
         for (int i = 0; i < 4; ++i) {
-            const bool old = static_cast<size_t>(t) < before.size();
             int32_t s = old ? before[t][i] : -1;
             if (!old || (s >= 0 && !alive(s))) {
-                const Tet& q = tets_[t];
+                const auto& f = kFaceVertex[i];
                 int32_t pair[2];
-                const int k = face_tets(FaceKey::of(q[kFaceVertex[i][0]], q[kFaceVertex[i][1]], q[kFaceVertex[i][2]]), pair);
+                const int k = face_tets(FaceKey::of(q[f[0]], q[f[1]], q[f[2]]), pair);
                 s = -1;
                 for (int j = 0; j < k; ++j)
                     if (pair[j] != t) s = pair[j];

@@ -39,10 +39,9 @@ public:
     // After a connectivity change that kept every vertex's index: the
     // record of tet slot t goes to written[t] (EditableMesh::written_tets:
     // the tets still there first, in order), one of `tets` now; new tets
-    // have none.  The owner
-    // counts every vertex the change touched as moved (SettledVertices::
-    // carry_over), so the records around them no longer hold.  reserve()
-    // first: this does not allocate.
+    // have none.  The owner counts every vertex the change touched as moved
+    // (SettledVertices::carry_over), so the records around them no longer
+    // hold.  With reserve() first, this does not allocate.
     void reserve(size_t tets) { records_.reserve(tets); }
     void carry_over(const std::vector<int32_t>& written, size_t tets) {
         if (records_.empty()) return;
