@@ -8,7 +8,9 @@
 //   BoundarySurface       one_ring of every boundary vertex of a box, an
 //                         L-shaped (nonconvex) block and a ball: exactly the
 //                         boundary neighbours, turning around the outward
-//                         normal; build() refuses pinched vertices and edges
+//                         normal; build() refuses pinched vertices and
+//                         edges, and a Tolerant build's rings there are
+//                         open or empty
 //   curve_order           a permutation; on a shuffled 8^3 grid consecutive
 //                         vertices are grid neighbours (a Hilbert curve);
 //                         tets by their first vertex, ties in the caller's
@@ -393,6 +395,17 @@ void expect_surface_refused(tm_cube_filter keep, const char* part) {
         assert_contains(e.what(), part);
     }
     assert_true(thrown);
+    // A Tolerant build leaves out the faces around the pinch: rings there
+    // are open, or empty where no face is left, and asking for them is safe.
+    surface.build(mesh, 0, 0, bodt::BoundarySurface::Strictness::Tolerant);
+    assert_false(surface.blocked().empty());
+    std::vector<int32_t> ring;
+    int empty = 0;
+    for (int32_t v : surface.blocked()) {
+        surface.one_ring(v, ring);
+        empty += ring.empty();
+    }
+    assert_true(empty > 0);
     // build_mesh refuses it the same way
     const bodt::MeshArrays a = mesh_arrays(m);
     thrown = false;

@@ -160,6 +160,7 @@ void BoundarySurface::one_ring(int32_t v, std::vector<int32_t>& ring) const {
     // For the outgoing halfedge h = (v -> y_i) of face (v, y_i, y_{i+1}), the
     // next outgoing halfedge (v -> y_{i+1}) is opposite(prev(h)).
     const auto start = surface_.halfedge_handle(vh);
+    if (!start.is_valid()) return;  // a Tolerant build left out every face around v
     auto h = start;
     do {
         ring.push_back(to_tet_[surface_.to_vertex_handle(h).idx()]);

@@ -126,10 +126,12 @@ std::vector<int32_t> BodtSmoother::read_differently(const VertexClasses& before,
                                                     const VertexClasses& after, const RegionSurfaces& surfaces_after) {
     std::vector<int32_t> out, ring_before, ring_after;
     for (int32_t v = 0; v < static_cast<int32_t>(before.cls.size()); ++v) {
-        bool same = before.cls[v] == after.cls[v] && before.line[v] == after.line[v] &&
-                    std::equal(surfaces_before.begin(v), surfaces_before.end(v), surfaces_after.begin(v),
-                               surfaces_after.end(v));
-        for (const int32_t* k = surfaces_before.begin(v); same && k != surfaces_before.end(v); ++k) {
+        bool same = before.cls[v] == after.cls[v] && before.line[v] == after.line[v];
+        // Only a surface or feature-line vertex reads its rings (target()).
+        const bool rings = before.cls[v] == VertexClass::Surface || before.cls[v] == VertexClass::FeatureLine;
+        same = same && (!rings || std::equal(surfaces_before.begin(v), surfaces_before.end(v), surfaces_after.begin(v),
+                                             surfaces_after.end(v)));
+        for (const int32_t* k = surfaces_before.begin(v); same && rings && k != surfaces_before.end(v); ++k) {
             surfaces_before.surface(*k).one_ring(v, ring_before);
             surfaces_after.surface(*k).one_ring(v, ring_after);
             same = ring_before == ring_after;

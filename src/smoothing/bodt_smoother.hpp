@@ -28,9 +28,9 @@ public:
     // The vertices, among those of `before`, whose targets read something
     // besides points that differs between two sets of classes and surfaces
     // of one mesh (whose connectivity changed, every vertex keeping its
-    // index): their class, feature-line neighbours, the surfaces they lie
-    // on, or their one-ring on one of them, in its order (the order of the
-    // sums).
+    // index): their class, feature-line neighbours, and for a surface or
+    // feature-line vertex the surfaces it lies on and its one-ring on each,
+    // in order (the order of the sums).
     static std::vector<int32_t> read_differently(const VertexClasses& before, const RegionSurfaces& surfaces_before,
                                                  const VertexClasses& after, const RegionSurfaces& surfaces_after);
 
