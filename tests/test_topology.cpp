@@ -85,11 +85,12 @@
 //   stamps               a move, an added or removed tet advance the clock
 //                        and the stamps of exactly the vertices touched;
 //                        a rollback gives every stamp back, and the clock
-//                        goes on
+//                        goes on; untouched() while every stamp is 0
 //   stuck_tets           a bad tet's failed attempts hold in later passes
 //                        while no vertex of the tets sharing an edge
 //                        (flips) or a vertex (insertion) with it moved
-//                        after them or is stamped (a change rolled back is not);
+//                        after them or is stamped (a change rolled back is not),
+//                        however many passes later;
 //                        a failure keeps the other attempt's record only
 //                        while that holds; an epoch or a pass without a
 //                        history forgets them
@@ -1916,7 +1917,7 @@ void test_failed_flips(void**) {
     assert_true(outside >= 0);
 
     std::vector<uint32_t> moved_at(static_cast<size_t>(first.num_vertices()), 0);
-    bodt::SweepHistory history{&moved_at, 10, 1};
+    bodt::SweepHistory history{&moved_at, 10, 1, 0};
     bodt::FailedFlips failed;
     failed.begin_pass(first, &history);
     assert_false(failed.repeats(first, a, b));
@@ -2049,10 +2050,19 @@ void test_stamps(void**) {
             if (moved_on) assert_true(now[v] > clock && now[v] <= em.clock());
         }
     };
+    // untouched(): every stamp is 0 (a change rolled back leaves none)
+    assert_true(em.untouched());
+    const size_t start = em.checkpoint();
+    assert_true(bodt::split_edge(em, em.tet(0)[0], em.tet(0)[1], 0.5 * (em.point(em.tet(0)[0]) + em.point(em.tet(0)[1])),
+                                 loose_rules(), 0.0) >= 0);
+    assert_false(em.untouched());
+    em.rollback(start);
+    assert_true(em.untouched());
     std::vector<uint64_t> s0 = stamps();
     uint64_t c0 = em.clock();
     em.move_vertex(5, em.point(5));
     advanced(s0, c0, {5});
+    assert_false(em.untouched());
     const size_t mark = em.checkpoint();
     const std::vector<uint64_t> at_mark = stamps();
     s0 = stamps();
@@ -2073,6 +2083,9 @@ void test_stamps(void**) {
     assert_true(stamps() == at_mark);
     assert_true(em.clock() > c0);
     assert_true(em.alive(0));
+    assert_false(em.untouched());  // vertex 5's move stays
+    em.rollback(start);
+    assert_true(em.untouched());
 }
 
 // The vertices of the tets that share a vertex with tet t: what every
@@ -2116,23 +2129,28 @@ void test_stuck_tets(void**) {
         if (!near.count(v)) outside = v;
     assert_true(ring >= 0 && corner >= 0 && outside >= 0);
 
+    // The sweeps' history as SettledVertices keeps it: moves happen between
+    // passes, at times before the next pass's `now`.
     std::vector<uint32_t> moved_at(static_cast<size_t>(probe.num_vertices()), 0);
-    bodt::SweepHistory history{&moved_at, 10, 1};
+    bodt::SweepHistory history{&moved_at, 10, 1, 0};
+    const auto sweep = [&](uint32_t now, std::initializer_list<std::pair<int32_t, uint32_t>> moves) {
+        for (const auto& m : moves) {
+            moved_at[static_cast<size_t>(m.first)] = m.second;
+            history.last_move = std::max(history.last_move, m.second);
+        }
+        history.now = now;
+    };
     StuckTets stuck;
     auto first = pass(stuck, &history);
     assert_false(stuck.stuck(*first, t, StuckTets::kFlips));
     stuck.failed(*first, t, StuckTets::kFlips);
     assert_false(stuck.stuck(*first, t, StuckTets::kFlips));  // its own pass: not read
-    // A later pass: held while nothing around t moved after the record.
-    history.now = 20;
-    moved_at[static_cast<size_t>(outside)] = 15;
+    // A later pass: held while nothing around t moved after the record
+    // (here a vertex far from t did).
+    sweep(20, {{outside, 15}});
     auto second = pass(stuck, &history);
     assert_true(stuck.stuck(*second, t, StuckTets::kFlips));
     assert_false(stuck.stuck(*second, t, StuckTets::kInsertion));
-    moved_at[static_cast<size_t>(ring)] = 15;  // moved after the record (tick 10)
-    assert_false(stuck.stuck(*second, t, StuckTets::kFlips));
-    moved_at[static_cast<size_t>(ring)] = 10;  // at the record's time: before it was made
-    assert_true(stuck.stuck(*second, t, StuckTets::kFlips));
     // Changed in this pass, then rolled back: the stamps tell both.
     const size_t mark = second->checkpoint();
     second->move_vertex(ring, second->point(ring));
@@ -2141,52 +2159,58 @@ void test_stuck_tets(void**) {
     assert_true(stuck.stuck(*second, t, StuckTets::kFlips));
     // An insertion failing now keeps the flips' record, at the new time.
     stuck.failed(*second, t, StuckTets::kInsertion);
-    history.now = 30;
-    moved_at[static_cast<size_t>(ring)] = 15;  // before the new time
+    // Nothing moved since: both hold.
+    sweep(30, {});
     auto third = pass(stuck, &history);
     assert_true(stuck.stuck(*third, t, StuckTets::kFlips));
     assert_true(stuck.stuck(*third, t, StuckTets::kInsertion));
-    // A vertex sharing only a vertex with t moved after both records: the
-    // flips never read it, the insertion's relocation does.
-    moved_at[static_cast<size_t>(corner)] = 25;
-    assert_true(stuck.stuck(*third, t, StuckTets::kFlips));
-    assert_false(stuck.stuck(*third, t, StuckTets::kInsertion));
-    moved_at[static_cast<size_t>(corner)] = 0;
-    // A record that no longer holds is not carried on by the other
-    // attempt's failure: ring moved after both records (tick 20), then the
-    // insertion fails again at 40.
-    moved_at[static_cast<size_t>(ring)] = 25;
-    history.now = 40;
+    // A vertex sharing only a vertex with t moved: the flips never read it,
+    // the insertion's relocation does.
+    sweep(40, {{corner, 35}});
     auto fourth = pass(stuck, &history);
-    assert_false(stuck.stuck(*fourth, t, StuckTets::kFlips));
+    assert_true(stuck.stuck(*fourth, t, StuckTets::kFlips));
     assert_false(stuck.stuck(*fourth, t, StuckTets::kInsertion));
-    stuck.failed(*fourth, t, StuckTets::kInsertion);
-    history.now = 50;
+    // A vertex of a tet sharing an edge with t moved: neither holds, and
+    // the insertion failing again does not carry the flips' record on.
+    sweep(50, {{ring, 45}});
     auto fifth = pass(stuck, &history);
-    assert_true(stuck.stuck(*fifth, t, StuckTets::kInsertion));
     assert_false(stuck.stuck(*fifth, t, StuckTets::kFlips));
-    // A new epoch, or a pass without a history, forgets everything.
-    history.epoch = 2;
-    history.now = 60;
+    assert_false(stuck.stuck(*fifth, t, StuckTets::kInsertion));
+    stuck.failed(*fifth, t, StuckTets::kInsertion);
+    sweep(60, {{outside, 55}});
     auto sixth = pass(stuck, &history);
+    assert_true(stuck.stuck(*sixth, t, StuckTets::kInsertion));
     assert_false(stuck.stuck(*sixth, t, StuckTets::kFlips));
-    assert_false(stuck.stuck(*sixth, t, StuckTets::kInsertion));
-    stuck.failed(*sixth, t, StuckTets::kFlips);
-    auto seventh = pass(stuck, nullptr);
-    assert_false(stuck.stuck(*seventh, t, StuckTets::kFlips));
-    stuck.failed(*seventh, t, StuckTets::kFlips);
-    history.epoch = 0;  // the epoch a pass without a history leaves: its records still go
-    history.now = 70;
-    std::fill(moved_at.begin(), moved_at.end(), 0u);
+    // A record found to hold is good until the next move around t, however
+    // many passes later (it is brought up to date on the way).
+    sweep(70, {});
+    auto seventh = pass(stuck, &history);
+    assert_true(stuck.stuck(*seventh, t, StuckTets::kInsertion));
+    sweep(80, {{corner, 75}});
     auto eighth = pass(stuck, &history);
-    assert_false(stuck.stuck(*eighth, t, StuckTets::kFlips));
-    // A clock too large for a record's field: no record.
-    history.now = uint32_t{1} << 30;
+    assert_false(stuck.stuck(*eighth, t, StuckTets::kInsertion));
+    // A new epoch, or a pass without a history, forgets everything.
+    stuck.failed(*eighth, t, StuckTets::kFlips);
+    history.epoch = 2;
+    sweep(90, {});
     auto ninth = pass(stuck, &history);
+    assert_false(stuck.stuck(*ninth, t, StuckTets::kFlips));
+    assert_false(stuck.stuck(*ninth, t, StuckTets::kInsertion));
     stuck.failed(*ninth, t, StuckTets::kFlips);
-    history.now += 10;
-    auto tenth = pass(stuck, &history);
+    auto tenth = pass(stuck, nullptr);
     assert_false(stuck.stuck(*tenth, t, StuckTets::kFlips));
+    stuck.failed(*tenth, t, StuckTets::kFlips);
+    history.epoch = 0;  // the epoch a pass without a history leaves: its records still go
+    sweep(100, {});
+    auto eleventh = pass(stuck, &history);
+    assert_false(stuck.stuck(*eleventh, t, StuckTets::kFlips));
+    // A clock too large for a record's field: no record.
+    sweep(uint32_t{1} << 30, {});
+    auto twelfth = pass(stuck, &history);
+    stuck.failed(*twelfth, t, StuckTets::kFlips);
+    sweep((uint32_t{1} << 30) + 10, {});
+    auto thirteenth = pass(stuck, &history);
+    assert_false(stuck.stuck(*thirteenth, t, StuckTets::kFlips));
 }
 
 // A Kuhn box with one interior vertex pulled most of the way to an interior

@@ -288,7 +288,7 @@ void EditableMesh::attach(int32_t t, const std::array<int32_t, 4>* at) {
     for (int i = 0; i < 4; ++i) {
         auto& list = vtets_[tets_[t][i]];
         list.insert(at ? list.begin() + (*at)[i] : list.end(), t);
-        stamp_[tets_[t][i]] = ++clock_;
+        set_stamp(tets_[t][i], ++clock_);
     }
 }
 
@@ -299,7 +299,7 @@ std::array<int32_t, 4> EditableMesh::detach(int32_t t) {
         const auto it = std::find(list.begin(), list.end(), t);
         at[i] = static_cast<int32_t>(it - list.begin());
         list.erase(it);
-        stamp_[tets_[t][i]] = ++clock_;
+        set_stamp(tets_[t][i], ++clock_);
     }
     return at;
 }
@@ -312,6 +312,7 @@ int32_t EditableMesh::add_vertex(const Vec3& p, VertexClass cls, Parents parents
     parents_.push_back(std::move(parents));
     vtets_.emplace_back();
     stamp_.push_back(++clock_);
+    ++stamped_;
     journal_.push_back({Change::AddVertex, v, {}, 0, Vec3::Zero(), 0, {}});
     return v;
 }
@@ -324,7 +325,7 @@ void EditableMesh::move_vertex(int32_t v, const Vec3& p) {
 
 void EditableMesh::place(int32_t v, const Vec3& p) {
     points_[v] = p;
-    stamp_[v] = ++clock_;
+    set_stamp(v, ++clock_);
     for (int32_t t : vtets_[v]) {
         sine_[t] = kUnknownSine;
         if (!sine_floor_.empty()) sine_floor_[t] = kNoSineFloor;
@@ -401,11 +402,12 @@ void EditableMesh::rollback(size_t mark) {
                 pins_.pop_back();
                 parents_.pop_back();
                 vtets_.pop_back();
+                set_stamp(static_cast<int32_t>(stamp_.size()) - 1, 0);
                 stamp_.pop_back();
                 break;
             case Change::MoveVertex:
                 place(e.index, e.old_point);
-                stamp_[e.index] = old_stamps_.back()[0];
+                set_stamp(e.index, old_stamps_.back()[0]);
                 old_stamps_.pop_back();
                 break;
             case Change::SetParents:

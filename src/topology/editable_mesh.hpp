@@ -112,6 +112,9 @@ public:
     // clock goes on): a test made before the checkpoint still holds.
     uint64_t clock() const { return clock_; }
     uint64_t stamp(int32_t v) const { return stamp_[v]; }
+    // Every stamp is 0: nothing changed since the mesh was made, or every
+    // change was rolled back.
+    bool untouched() const { return stamped_ == 0; }
 
     // ---- changes (all logged)
     int32_t add_vertex(const Vec3& p, VertexClass cls, Parents parents);
@@ -163,8 +166,12 @@ private:
     std::array<uint64_t, 4> stamps_of(const Tet& q) const {
         return {stamp_[q[0]], stamp_[q[1]], stamp_[q[2]], stamp_[q[3]]};
     }
+    void set_stamp(int32_t v, uint64_t stamp) {
+        stamped_ += static_cast<int64_t>(stamp != 0) - static_cast<int64_t>(stamp_[v] != 0);
+        stamp_[v] = stamp;
+    }
     void restore_stamps(const Tet& q, const std::array<uint64_t, 4>& old) {
-        for (int i = 0; i < 4; ++i) stamp_[q[i]] = old[i];
+        for (int i = 0; i < 4; ++i) set_stamp(q[i], old[i]);
     }
 
     std::vector<Vec3> points_;
@@ -176,6 +183,7 @@ private:
     mutable std::vector<double> sine_;  // tet_sine, NaN: not known
     std::vector<double> sine_floor_;    // bound_sines, -inf: none (empty: never bounded)
     std::vector<uint64_t> stamp_;       // per vertex, see stamp()
+    int64_t stamped_ = 0;               // vertices whose stamp is not 0
     uint64_t clock_ = 0;
     mutable std::vector<std::array<int32_t, 3>> ring_links_;  // edge_ring's scratch
     std::vector<std::vector<int32_t>> vtets_;

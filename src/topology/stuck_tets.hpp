@@ -32,7 +32,7 @@ public:
         // Without a history nothing is kept, and no room is made for records.
         const bool keep = history && history->epoch == epoch_ && records_.size() == static_cast<size_t>(mesh.tet_capacity());
         if (!keep) records_.assign(history ? static_cast<size_t>(mesh.tet_capacity()) : 0, 0);
-        history_ = history ? *history : SweepHistory{nullptr, 0, 0};
+        history_ = history ? *history : SweepHistory{nullptr, 0, 0, 0};
         epoch_ = history_.epoch;
     }
 
@@ -54,20 +54,19 @@ public:
 
     // The attempt on t failed in an earlier pass, and since then no vertex
     // of a tet sharing an edge (flips) or a vertex (insertion) with t moved
-    // (sweeps) or changed (this pass).
-    bool stuck(const EditableMesh& mesh, int32_t t, Attempt attempt) const {
+    // (sweeps) or changed (this pass).  A record found to hold while this
+    // pass has changed nothing is brought up to now, so that on a settled
+    // mesh the next pass finds it without looking around t.
+    bool stuck(const EditableMesh& mesh, int32_t t, Attempt attempt) {
         if (static_cast<size_t>(t) >= records_.size() || !(records_[t] & attempt)) return false;
         const uint32_t tick = records_[t] >> kBits;
         if (tick >= history_.now) return false;  // this pass's own: the stamps alone cannot tell
-        const Tet& q = mesh.tet(t);
-        for (int32_t v : q)
-            for (int32_t s : mesh.tets_of(v)) {
-                const Tet& n = mesh.tet(s);
-                if (attempt == kFlips && shared_vertices(q, n) < 2) continue;
-                for (int32_t u : n)
-                    if (mesh.stamp(u) != 0 || history_.moved_after(u, tick)) return false;
-            }
-        return true;
+        // Nothing changed in this pass and nothing moved since: the walk
+        // below would find nothing.
+        if (mesh.untouched() && !history_.any_moved_after(tick)) return true;
+        const uint32_t holding = attempts_holding(mesh, t, tick);
+        if (mesh.untouched() && history_.now <= kMaxTick) records_[t] = (history_.now - 1) << kBits | holding;
+        return (holding & attempt) != 0;
     }
     // The attempt on t failed now.  The other attempt's record, if it holds
     // (stuck, or made in this pass), holds now too: both keep the new time.
@@ -81,6 +80,28 @@ public:
     }
 
 private:
+    // The attempts recorded for t at `tick` that still hold: the flips
+    // while no tet sharing an edge with t changed, the insertion while no
+    // tet sharing a vertex did.
+    uint32_t attempts_holding(const EditableMesh& mesh, int32_t t, uint32_t tick) const {
+        bool edges = true, vertices = (records_[t] & kInsertion) != 0;
+        const Tet& q = mesh.tet(t);
+        for (int32_t v : q)
+            for (int32_t s : mesh.tets_of(v)) {
+                const Tet& n = mesh.tet(s);
+                const bool shares_edge = shared_vertices(q, n) >= 2;
+                if (!shares_edge && !vertices) continue;
+                for (int32_t u : n)
+                    if (mesh.stamp(u) != 0 || history_.moved_after(u, tick)) {
+                        vertices = false;
+                        edges = edges && !shares_edge;
+                        break;
+                    }
+                if (!edges) return 0;  // the edge set is in the vertex set
+            }
+        return (records_[t] & (edges ? kFlips : 0u)) | (vertices ? uint32_t{kInsertion} : 0u);
+    }
+
     static int shared_vertices(const Tet& a, const Tet& b) {
         int n = 0;
         for (int32_t v : b) n += holds(a, v);
@@ -91,7 +112,7 @@ private:
     static constexpr uint32_t kMaxTick = uint32_t{1} << (32 - kBits);
 
     std::vector<uint32_t> records_;  // per tet: the sweeps' clock << kBits | the attempts that failed then
-    SweepHistory history_{nullptr, 0, 0};
+    SweepHistory history_{nullptr, 0, 0, 0};
     uint64_t epoch_ = 0;
 };
 
