@@ -421,8 +421,12 @@ BODT_API int bodt_get_mode(const bodt_mesh *mesh, int *mode);
  * getter that matches it (the other is refused).
  */
 enum bodt_param {
-    /* double, default 1e-6: bodt_run stops when the largest move of a step
-     * is below this fraction of the bounding-box diagonal. */
+    /* double, default 1e-6: convergence.  In the B-ODT and ODT sweeps
+     * (BODT_MODE_ODT, _BODT_BASIC, _BODT) a vertex whose move would be at
+     * most this fraction of its star's size (the cube root of the star's
+     * volume) has converged and stays where it is; bodt_run stops when the
+     * largest move of a step is below this fraction of the bounding-box
+     * diagonal. */
     BODT_PARAM_TOLERANCE = 1,
     /* int, default 4: how many times a rejected move is halved and tried
      * again before the vertex is left where it is. */

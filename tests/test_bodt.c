@@ -13,6 +13,10 @@
  *   volume        one step and 20 steps of BODT_BASIC and BODT keep the total
  *                 volume (1e-12 relative) on a box, an L-shape and a notched
  *                 box, with BODT_PARAM_NEVER_WORSE 0 and 1 (Appendix B)
+ *   converged     BODT_PARAM_TOLERANCE: a move shorter than that fraction
+ *                 of the star's size is not made (at 1 none is, also on the
+ *                 box scaled by 1e-6); at the default the box converges and
+ *                 then stays bit for bit, no vertex tried again
  *   odt           ODT moves interior vertices only; boundary bit for bit
  *   features      BODT: corners bit for bit, edge vertices on their lines,
  *                 face vertices on their planes, and they do move; BODT_BASIC
@@ -234,6 +238,55 @@ static void test_volume_notch(void **state) {
     (void)state;
     const shape s = make_sliding(3, 2.0, keep_notch, NULL, 0.25, 0.25, 13);
     check_volume_kept(&s, "notched box");
+}
+
+/* ---------------------------------------------------------- convergence */
+
+/* BODT_PARAM_TOLERANCE: a vertex whose move would be at most that fraction
+ * of its star's size stays.  At the largest tolerance (1) no move on the
+ * jittered box is that long: a step moves nothing, and the same holds with
+ * the box scaled down by 1e-6 (the size is the star's, not absolute).  At
+ * the default the box converges: some step moves no vertex, and from then
+ * on the steps leave the mesh bit for bit as it is, trying no vertex
+ * again (every one has stayed, and nothing around it moved). */
+static void test_converged(void **state) {
+    (void)state;
+    const shape s = make_sliding(4, 1.0, NULL, NULL, 0.25, 0.25, 11);
+    const test_mesh *m = s.m;
+    bodt_step_report r;
+    for (int scaled = 0; scaled <= 1; ++scaled) {
+        test_mesh small = *m;
+        double *xyz = cleanup_calloc(3 * (size_t)m->nverts * sizeof *xyz);
+        for (int32_t i = 0; i < 3 * m->nverts; ++i) xyz[i] = scaled ? 1e-6 * m->xyz[i] : m->xyz[i];
+        small.xyz = xyz;
+        bodt_mesh *h = create_smoothing(&small, BODT_MODE_BODT);
+        assert_int_equal(bodt_set_param_double(h, BODT_PARAM_TOLERANCE, 1.0), BODT_OK);
+        step_ok(h, &r);
+        if (r.vertices_moved != 0) fail_msg("tolerance 1 (scaled %d): %d vertices moved", scaled, r.vertices_moved);
+        if (memcmp(get_xyz(h, m->nverts), xyz, 3 * (size_t)m->nverts * sizeof *xyz) != 0)
+            fail_msg("tolerance 1 (scaled %d): the vertices changed", scaled);
+        assert_int_equal(bodt_set_param_double(h, BODT_PARAM_TOLERANCE, 1e-6), BODT_OK);
+        step_ok(h, &r);
+        if (!(r.vertices_moved > m->nverts / 4))
+            fail_msg("tolerance 1e-6 (scaled %d): only %d vertices moved", scaled, r.vertices_moved);
+    }
+
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
+    int still = -1;
+    for (int k = 0; k < 500 && still < 0; ++k) {
+        step_ok(h, &r);
+        if (r.vertices_moved == 0) still = k;
+    }
+    if (still < 1) fail_msg("the box did not converge in 500 steps (or never moved): %d", still);
+    print_message("converged: step %d moved no vertex\n", still + 1);
+    const double *before = get_xyz(h, m->nverts);
+    for (int k = 0; k < 3; ++k) {
+        step_ok(h, &r);
+        if (r.vertices_moved != 0 || r.moves_rejected != 0)
+            fail_msg("after convergence: %d moved, %d refused", r.vertices_moved, r.moves_rejected);
+    }
+    if (memcmp(get_xyz(h, m->nverts), before, 3 * (size_t)m->nverts * sizeof *before) != 0)
+        fail_msg("after convergence the vertices changed");
 }
 
 /* ---------------------------------------------------------------- 2 ODT */
@@ -982,6 +1035,7 @@ int main(void) {
         cmocka_unit_test_teardown(test_volume_box, cleanup_teardown),
         cmocka_unit_test_teardown(test_volume_l_shape, cleanup_teardown),
         cmocka_unit_test_teardown(test_volume_notch, cleanup_teardown),
+        cmocka_unit_test_teardown(test_converged, cleanup_teardown),
         cmocka_unit_test_teardown(test_odt_moves_interior_only, cleanup_teardown),
         cmocka_unit_test_teardown(test_features_box, cleanup_teardown),
         cmocka_unit_test_teardown(test_user_feature_line, cleanup_teardown),

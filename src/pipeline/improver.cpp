@@ -145,7 +145,7 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
     settled_.begin_sweep(mesh.points.size(), mesh.colouring().colours());
     const auto states = coloured_sweep(
-        mesh.colouring(), threads, State{BodtSmoother(surfaces, cls), MoveGuard(guard_settings(), &shapes), {}, {}},
+        mesh.colouring(), threads, State{BodtSmoother(surfaces, cls, params_.tolerance), MoveGuard(guard_settings(), &shapes), {}, {}},
         [&](State& s, int32_t v, int32_t colour) {
             if ((interior_only && cls.cls[v] != VertexClass::Interior) || settled_.settled(mesh, v)) return;
             StarTable& star = s.guard.star();

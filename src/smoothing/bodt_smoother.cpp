@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <cmath>
 
 namespace bodt {
 
@@ -94,7 +95,7 @@ Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star,
         // Algorithm 1, eq. (3): x* = x0 - 1/(2|Omega_0|) sum (1/3) S n L = x0 - 2 g / |Omega_0|.
         if (!(model.volume > 0.0)) return Plan::NotPositiveDefinite;
         target = x0 - (2.0 / model.volume) * model.g;
-        return Plan::Move;
+        return move_unless_converged(target - x0, model);
     }
 
     normals_.clear();
@@ -119,7 +120,16 @@ Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star,
     Vec3 move;
     if (!minimize_on(model, basis, move)) return Plan::NotPositiveDefinite;
     target = x0 + move;
-    return Plan::Move;
+    return move_unless_converged(move, model);
+}
+
+// The fixed-point iteration converges geometrically: without this, vertices
+// go on moving by round-off for ever, and every such move makes the
+// vertices and bad tets around them be tried again (SettledVertices,
+// StuckTets).  Relative to the star, so a fine part of a graded mesh is
+// smoothed as a coarse one is.
+Plan BodtSmoother::move_unless_converged(const Vec3& move, const StarModel& model) const {
+    return move.norm() <= tolerance_ * std::cbrt(model.volume) ? Plan::Stay : Plan::Move;
 }
 
 std::vector<int32_t> BodtSmoother::read_differently(const VertexClasses& before, const RegionSurfaces& surfaces_before,

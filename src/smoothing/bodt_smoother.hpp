@@ -16,12 +16,15 @@ enum class Plan { Move, Stay, NotPositiveDefinite };
 
 class BodtSmoother {
 public:
-    BodtSmoother(const RegionSurfaces& surfaces, const VertexClasses& classes)
-        : surfaces_(surfaces), classes_(classes) {}
+    // `tolerance`: a vertex whose move would be at most this fraction of
+    // its star's size (the cube root of its volume) has converged and stays.
+    BodtSmoother(const RegionSurfaces& surfaces, const VertexClasses& classes, double tolerance)
+        : surfaces_(surfaces), classes_(classes), tolerance_(tolerance) {}
 
-    // The target of vertex v, whose star is in `star`.  `surface_faces`
-    // receives the surface triangles around v (for the guard's normal-flip
-    // check); empty for inner vertices.
+    // The target of vertex v, whose star is in `star`: Stay when v's move
+    // is shorter than the tolerance.  `surface_faces` receives the surface
+    // triangles around v (for the guard's normal-flip check); empty for
+    // inner vertices.
     Plan target(const TetMesh& mesh, int32_t v, const StarTable& star, Vec3& target,
                 std::vector<FaceKey>& surface_faces);
 
@@ -40,9 +43,11 @@ private:
     // the feature line for a FeatureLine vertex.
     bool move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis);
     Vec3 line_direction(const TetMesh& mesh, int32_t v, const std::array<int32_t, 2>& line);
+    Plan move_unless_converged(const Vec3& move, const StarModel& model) const;
 
     const RegionSurfaces& surfaces_;
     const VertexClasses& classes_;
+    double tolerance_;
     std::vector<int32_t> first_ring_;  // the one-ring of v on its first surface
     std::vector<int32_t> ring_;        // scratch for the others
     std::vector<Vec3> normals_;  // one ring normal sum_i S_i n_i per surface at v (eq. B.1)
