@@ -17,21 +17,31 @@
 //                         order; bad input left in order; a mesh built in it
 //                         gives the caller's points and tets back, and its
 //                         stars list tets in the caller's order
+//   coloured_sweep        on 1, 2 and 3 threads every coloured vertex is
+//                         visited once, after each neighbour of lower colour
+//                         was done and never while a neighbour was being
+//                         visited; the colouring is proper and its counts of
+//                         lower pairs are right; an exception in a visit
+//                         stops the sweep and comes out of it
 #include "common/error.hpp"
 #include "mesh/boundary_surface.hpp"
 #include "mesh/curve_order.hpp"
 #include "mesh/mesh_builder.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "quality/tet_geometry.hpp"
+#include "smoothing/coloured_sweep.hpp"
 
 #include "bodt.h"
 #include "mesh_gen.h"
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -511,6 +521,80 @@ void test_curve_order_mesh(void**) {
     tm_free(&m);
 }
 
+
+// ---------------------------------------------------------- coloured sweep
+
+// The other vertices of v's tets.
+std::set<int32_t> neighbours_of(const bodt::TetMesh& mesh, int32_t v) {
+    std::set<int32_t> out;
+    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
+        for (const int32_t u : mesh.tets[*t])
+            if (u != v) out.insert(u);
+    return out;
+}
+
+void test_coloured_sweep_order(void**) {
+    test_mesh m{};
+    assert_int_equal(tm_make_box(&m, 24, 0.2, 5), 0);  // 15625 vertices: room for 3 threads
+    const bodt::BuiltMesh b = bodt::build_mesh_in_curve_order(mesh_arrays(m));
+    const bodt::TetMesh& mesh = b.mesh;
+    const bodt::VertexColouring& colouring = mesh.colouring();
+    const int32_t n = mesh.num_vertices();
+    for (int32_t v = 0; v < n; ++v) {
+        int32_t lower = 0;
+        for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
+            for (const int32_t u : mesh.tets[*t]) lower += colouring.colour[u] < colouring.colour[v];
+        assert_int_equal(colouring.lower[v], lower);
+        assert_true(colouring.colour[v] >= 0 && colouring.colour[v] < colouring.colours());
+        for (const int32_t u : neighbours_of(mesh, v)) assert_int_not_equal(colouring.colour[u], colouring.colour[v]);
+    }
+    for (const int threads : {1, 2, 3}) {
+        // Each visit takes a ticket when it starts and marks its vertex busy
+        // until it ends; the threads record what they saw, checked after.
+        std::unique_ptr<std::atomic<int32_t>[]> ticket(new std::atomic<int32_t>[n]);
+        std::unique_ptr<std::atomic<int32_t>[]> busy(new std::atomic<int32_t>[n]);
+        for (int32_t v = 0; v < n; ++v) ticket[v] = -1, busy[v] = 0;
+        std::atomic<int32_t> next{0}, visits{0}, overlaps{0};
+        struct State {
+            int32_t visited = 0;
+        };
+        const auto states = bodt::coloured_sweep(mesh, threads, State{}, [&](State& s, int32_t v, int32_t c) {
+            assert_true(c == colouring.colour[v]);
+            busy[v] = 1;
+            ticket[v] = next++;
+            ++visits;
+            ++s.visited;
+            for (const int32_t u : neighbours_of(mesh, v)) overlaps += busy[u].load();
+            busy[v] = 0;
+        });
+        assert_true(states.size() == static_cast<size_t>(threads));  // n allows them all
+        int32_t visited = 0;
+        for (const State& s : states) visited += s.visited;
+        assert_int_equal(visited, n);
+        assert_int_equal(visits.load(), n);
+        assert_int_equal(overlaps.load(), 0);
+        for (int32_t v = 0; v < n; ++v) {
+            assert_true(ticket[v] >= 0);
+            for (const int32_t u : neighbours_of(mesh, v))
+                if (colouring.colour[u] < colouring.colour[v]) assert_true(ticket[u] < ticket[v]);
+        }
+        // A visit that throws stops the sweep; the error comes out.
+        std::atomic<int32_t> after{0};
+        bool thrown = false;
+        try {
+            bodt::coloured_sweep(mesh, threads, State{}, [&](State&, int32_t v) {
+                if (v == n / 2) throw std::runtime_error("stop");
+                ++after;
+            });
+        } catch (const std::runtime_error& e) {
+            thrown = std::string(e.what()) == "stop";
+        }
+        assert_true(thrown);
+        assert_true(after.load() < n - 1);
+    }
+    tm_free(&m);
+}
+
 }  // namespace
 
 int main() {
@@ -527,6 +611,7 @@ int main() {
         cmocka_unit_test(test_curve_order_hilbert),
         cmocka_unit_test(test_curve_order_tets),
         cmocka_unit_test(test_curve_order_mesh),
+        cmocka_unit_test(test_coloured_sweep_order),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -1,7 +1,9 @@
 // Greedy distance-1 colouring of the vertices: two vertices of one colour
-// share no tet.  A sweep that moves the vertices colour by colour is a
-// Gauss-Seidel sweep whose moves within a colour touch disjoint stars, so
-// they may run in any order, on any number of threads, with the same result.
+// share no tet.  A sweep that moves each vertex after its neighbours of
+// lower colour and before those of higher colour is a Gauss-Seidel sweep
+// in colour order whose result does not depend on anything else: not on
+// the number of threads, nor on the order among vertices that share no tet
+// (smoothing/coloured_sweep.hpp).
 #pragma once
 
 #include "mesh/tet_mesh.hpp"
@@ -12,10 +14,13 @@
 namespace bodt {
 
 struct VertexColouring {
-    // The vertices of colour c are order[offset[c] .. offset[c + 1]), in
-    // ascending (internal) index.  Unused vertices get no colour.
-    std::vector<int32_t> offset, order;
-    int32_t colours() const { return static_cast<int32_t>(offset.size()) - 1; }
+    std::vector<int32_t> colour;  // per vertex; -1 for an unused vertex
+    // Per vertex: the pairs (tet of its star, other vertex of that tet) whose
+    // vertex has a lower colour; a sweep may move the vertex once as many
+    // such pairs are done.
+    std::vector<int32_t> lower;
+    int32_t count = 0;  // colours
+    int32_t colours() const { return count; }
 };
 
 // Each vertex, in the caller's index order (TetMesh::caller), takes the

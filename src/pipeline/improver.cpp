@@ -120,7 +120,7 @@ void Improver::sweep_laplace(TetMesh& mesh, ShapeCache& shapes, StepReport& repo
     const std::vector<FaceKey> no_faces;
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
     const auto states = coloured_sweep(
-        mesh.colouring(), threads, State{MoveGuard(guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
+        mesh, threads, State{MoveGuard(guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
             if (!mesh.is_interior_free(v)) return;
             const Vec3 target = laplace_target(mesh, v, s.scratch);
             double distance = 0.0;
@@ -145,7 +145,7 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
     settled_.begin_sweep(mesh.points.size(), mesh.colouring().colours());
     const auto states = coloured_sweep(
-        mesh.colouring(), threads, State{BodtSmoother(surfaces, cls, params_.tolerance), MoveGuard(guard_settings(), &shapes), {}, {}},
+        mesh, threads, State{BodtSmoother(surfaces, cls, params_.tolerance), MoveGuard(guard_settings(), &shapes), {}, {}},
         [&](State& s, int32_t v, int32_t colour) {
             if ((interior_only && cls.cls[v] != VertexClass::Interior) || settled_.settled(mesh, v)) return;
             StarTable& star = s.guard.star();
@@ -175,7 +175,7 @@ void Improver::sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
     };
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
     const auto states = coloured_sweep(
-        mesh.colouring(), threads,
+        mesh, threads,
         State{NodtSmoother(surfaces, cls, nodt_input_, guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
             smooth_vertex([&](Vec3& target) { return s.smoother.target(mesh, v, target, s.faces); },
                           [&](const Vec3& target, double& distance) {
@@ -210,7 +210,7 @@ void Improver::sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces,
     const std::vector<FaceKey> no_faces;
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
     const auto states = coloured_sweep(
-        mesh.colouring(), threads,
+        mesh, threads,
         State{OptWeightedSmoother(cls.cls, ElementWeights::from_c(params_.weight_c), quasi_newton_settings()),
               MoveGuard(guard_settings(), &shapes), {}},
         [&](State& s, int32_t v) {

@@ -1,6 +1,6 @@
 // The improvement pipeline of a mesh handle: the current mode, its
 // parameters, the vertex classes the mode works with, and `step`: one
-// Gauss-Seidel sweep over the vertices, colour by colour (coloured_sweep.hpp),
+// Gauss-Seidel sweep over the vertices in colour order (coloured_sweep.hpp),
 // then flips and vertex insertion where tets are still bad (paper 000
 // Fig. 1), or, in BODT_MODE_OPT_WEIGHTED, one round of paper 001's combined
 // algorithm (sec. 2): quasi-Newton on the vertices of poor tets, then swaps of the
@@ -79,7 +79,7 @@ private:
     // The classes of the modes other than paper 002's, made anew.
     VertexClasses classify(const TetMesh& mesh, const RegionSurfaces& surfaces) const;
     GuardSettings guard_settings() const;
-    // Smoothing sweeps: Gauss-Seidel colour by colour (coloured_sweep.hpp),
+    // Smoothing sweeps: Gauss-Seidel in colour order (coloured_sweep.hpp),
     // on BODT_PARAM_THREADS threads; `shapes` (tet_shapes() of the mesh as
     // it is, made if empty) is kept up to date by the moves.
     void sweep(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes, StepReport& report);

@@ -1,16 +1,25 @@
-// A smoothing sweep over the vertices colour by colour (vertex_colouring.hpp),
-// each colour's vertices shared among OpenMP threads.  Moves within a colour
-// touch disjoint stars, so the result does not depend on the number of
-// threads or on how the vertices are shared out.
+// A smoothing sweep in colour order (vertex_colouring.hpp): each vertex is
+// visited after its neighbours of lower colour and before those of higher
+// colour, which is all a Gauss-Seidel sweep colour by colour depends on, so
+// the result is that of a sweep colour by colour, on any number of threads.
+// The visits follow the data instead of the colours: a vertex is visited as
+// soon as its last neighbour of lower colour is done, by the thread that did
+// it, so the sweep runs as a narrow front along the internal (curve) order
+// and finds the stars it reads in the cache, where a sweep colour by colour
+// streams the whole mesh once per colour.
 #pragma once
 
+#include "mesh/tet_mesh.hpp"
 #include "mesh/vertex_colouring.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <memory>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #ifdef _OPENMP
@@ -34,43 +43,116 @@ inline int sweep_threads(int32_t requested, size_t items) {
 #endif
 }
 
-// Calls body(state, v) for every coloured vertex v, where `state` is the
-// calling thread's own copy of `initial` (scratch space and counters), or
-// body(state, v, c) with v's colour c when `body` takes one.
-// Returns the states, one per thread, for the caller to merge.  An exception
-// thrown by `body` stops the sweep after the current colour and is rethrown.
+namespace detail {
+
 template <class State, class Body>
-std::vector<State> coloured_sweep(const VertexColouring& colouring, int threads, const State& initial, Body body) {
-    // At least 32 vertices of a mean colour per thread.
-    const size_t per_colour = colouring.order.size() / static_cast<size_t>(std::max(1, colouring.colours()));
-    threads = std::max(1, std::min(threads, static_cast<int>(per_colour / 32)));
+void visit_vertex(Body& body, State& state, int32_t v, int32_t colour) {
+    if constexpr (std::is_invocable_v<Body&, State&, int32_t, int32_t>) body(state, v, colour);
+    else body(state, v);
+}
+
+// The neighbours of lower colour of a vertex are counted by (tet, vertex)
+// pairs of its star (VertexColouring::lower).  After v's visit, each vertex
+// w of higher colour around v is released by its pairs with v,
+// `release(w, pairs)`, which says whether those were w's last ones; w then
+// goes on `ready`.  With `grouped`, the pairs are summed per neighbour
+// first, so that each neighbour takes one subtraction (an atomic one costs
+// more than the summing).
+template <bool grouped, class Release>
+void release_higher(const TetMesh& mesh, const std::vector<int32_t>& colour, int32_t v,
+                    std::vector<std::pair<int32_t, int32_t>>& pairs, std::vector<int32_t>& ready, Release release) {
+    const int32_t c = colour[v];
+    pairs.clear();
+    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
+        for (const int32_t w : mesh.tets[*t]) {
+            if (colour[w] <= c) continue;
+            if constexpr (!grouped) {
+                if (release(w, 1)) ready.push_back(w);
+                continue;
+            }
+            auto it = pairs.begin();
+            while (it != pairs.end() && it->first != w) ++it;
+            if (it == pairs.end()) pairs.push_back({w, 1});
+            else ++it->second;
+        }
+    for (const auto& [w, k] : pairs)
+        if (release(w, k)) ready.push_back(w);
+}
+
+}  // namespace detail
+
+// Calls body(state, v) for every coloured vertex v of `mesh`, where `state`
+// is the calling thread's own copy of `initial` (scratch space and counters),
+// or body(state, v, c) with v's colour c when `body` takes one.  A vertex
+// whose neighbours of lower colour are all done is visited next (the last
+// one it became ready by, depth first), else the next vertex in internal
+// order that waits for none.  Returns the states, one per thread, for the
+// caller to merge.  An exception thrown by `body` stops the sweep and is
+// rethrown; the vertices not visited yet are left as they are.
+template <class State, class Body>
+std::vector<State> coloured_sweep(const TetMesh& mesh, int threads, const State& initial, Body body) {
+    const VertexColouring& colouring = mesh.colouring();
+    const std::vector<int32_t>& colour = colouring.colour;
+    const std::vector<int32_t>& lower = colouring.lower;
+    const int32_t n = mesh.num_vertices();
+    // Each thread takes runs of this many vertices (in internal order) to
+    // start from; at least a few runs per thread.
+    constexpr int32_t kRun = 1024;
+    threads = std::max(1, std::min(threads, n / (4 * kRun)));
     std::vector<State> states(static_cast<size_t>(threads), initial);
+    std::vector<int32_t> ready;
+    std::vector<std::pair<int32_t, int32_t>> pairs;
+    if (threads == 1) {
+        std::vector<int32_t> pending(lower);
+        const auto release = [&pending](int32_t w, int32_t k) { return (pending[w] -= k) == 0; };
+        for (int32_t v = 0; v < n; ++v) {
+            if (colour[v] < 0 || lower[v] != 0) continue;
+            ready.push_back(v);
+            while (!ready.empty()) {
+                const int32_t u = ready.back();
+                ready.pop_back();
+                detail::visit_vertex(body, states[0], u, colour[u]);
+                detail::release_higher<false>(mesh, colour, u, pairs, ready, release);
+            }
+        }
+        return states;
+    }
+
+    // The thread whose release takes a vertex's count to 0 visits it: it
+    // saw every write of the vertices before it (acquire-release).
+    std::unique_ptr<std::atomic<int32_t>[]> pending(new std::atomic<int32_t>[static_cast<size_t>(n)]);
+    for (int32_t v = 0; v < n; ++v) pending[v].store(lower[v], std::memory_order_relaxed);
+    const auto release = [&pending](int32_t w, int32_t k) {
+        return pending[w].fetch_sub(k, std::memory_order_acq_rel) == k;
+    };
+    std::atomic<int32_t> next_run{0};
+    std::atomic<bool> failed{false};
     std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
-    bool failed = false;
-#pragma omp parallel num_threads(threads)
+#pragma omp parallel num_threads(threads) firstprivate(ready, pairs)
     {
 #ifdef _OPENMP
         const size_t me = static_cast<size_t>(omp_get_thread_num());
 #else
         const size_t me = 0;
 #endif
-        for (int32_t c = 0; c < colouring.colours(); ++c) {
-#pragma omp for schedule(dynamic, 64)
-            for (int32_t i = colouring.offset[c]; i < colouring.offset[c + 1]; ++i) {
-                if (errors[me]) continue;
-                try {
-                    if constexpr (std::is_invocable_v<Body&, State&, int32_t, int32_t>)
-                        body(states[me], colouring.order[i], c);
-                    else
-                        body(states[me], colouring.order[i]);
-                } catch (...) {
-                    errors[me] = std::current_exception();
+        try {
+            for (int32_t begin; !failed.load(std::memory_order_relaxed) &&
+                                (begin = next_run.fetch_add(kRun, std::memory_order_relaxed)) < n;) {
+                const int32_t end = std::min(n, begin + kRun);
+                for (int32_t v = begin; v < end && !failed.load(std::memory_order_relaxed); ++v) {
+                    if (colour[v] < 0 || lower[v] != 0) continue;
+                    ready.push_back(v);
+                    while (!ready.empty()) {
+                        const int32_t u = ready.back();
+                        ready.pop_back();
+                        detail::visit_vertex(body, states[me], u, colour[u]);
+                        detail::release_higher<true>(mesh, colour, u, pairs, ready, release);
+                    }
                 }
             }
-            // The implicit barrier of `omp for` ends the colour; stop on an error.
-#pragma omp single
-            for (const std::exception_ptr& e : errors) failed = failed || static_cast<bool>(e);
-            if (failed) break;
+        } catch (...) {
+            errors[me] = std::current_exception();
+            failed.store(true, std::memory_order_relaxed);
         }
     }
     for (const std::exception_ptr& e : errors)

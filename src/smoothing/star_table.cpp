@@ -8,7 +8,8 @@ void StarTable::gather(const TetMesh& mesh, int32_t v) {
     const size_t n = size_;
     for (size_t s = 0; s < n; ++s) {
         const Tet& q = mesh.tets[star[s]];
-        const int at = q[0] == v ? 0 : (q[1] == v ? 1 : (q[2] == v ? 2 : 3));
+        // Without branches: the corner is as good as random from tet to tet.
+        const int at = (q[1] == v) + 2 * (q[2] == v) + 3 * (q[3] == v);
         at_[s] = at;
         for (int k = 0; k < 3; ++k) {
             const Vec3& c = mesh.points[q[kFaceVertex[at][k]]];
