@@ -63,23 +63,39 @@ struct Orientation {
     int sign;
 };
 
-BODT_KERNEL Orientation orient(const Coords& a, const Coords& b, const Coords& c, const Coords& d) {
+// The determinant and the permanent its error bound scales with.  The
+// tests give bools of double comparisons only, so that a loop over tets
+// using them vectorises with one mask width.
+struct OrientTerms {
+    double det, permanent;
+
+    static constexpr double kEps = 1.1102230246251565e-16;  // 2^-53
+    static constexpr double kBound = (7.0 + 56.0 * kEps) * kEps;
+    // The bound assumes no underflow, and the quality measures multiply up
+    // to eight differences: a tet whose products are this small (less than
+    // about 1e-30 across, or a sliver of denormal volume) counts as flat,
+    // as does a non-finite determinant.
+    static constexpr double kTiny = 1e-90;
+    BODT_KERNEL bool usable() const {
+        return (permanent >= kTiny) & (permanent <= std::numeric_limits<double>::max());
+    }
+    BODT_KERNEL bool positive() const { return usable() & (det > kBound * permanent); }
+    BODT_KERNEL bool negative() const { return usable() & (det < -kBound * permanent); }
+};
+
+BODT_KERNEL OrientTerms orient_terms(const Coords& a, const Coords& b, const Coords& c, const Coords& d) {
     const Coords u = b - a, v = c - a, w = d - a;
     const double m1 = v.y * w.z, m2 = v.z * w.y, m3 = v.z * w.x, m4 = v.x * w.z, m5 = v.x * w.y, m6 = v.y * w.x;
     const double det = u.x * (m1 - m2) + u.y * (m3 - m4) + u.z * (m5 - m6);
     const double permanent = std::abs(u.x) * (std::abs(m1) + std::abs(m2)) +
                              std::abs(u.y) * (std::abs(m3) + std::abs(m4)) +
                              std::abs(u.z) * (std::abs(m5) + std::abs(m6));
-    constexpr double eps = 1.1102230246251565e-16;  // 2^-53
-    constexpr double bound = (7.0 + 56.0 * eps) * eps;
-    // The bound assumes no underflow, and the quality measures multiply up
-    // to eight differences: a tet whose products are this small (less than
-    // about 1e-30 across, or a sliver of denormal volume) counts as flat,
-    // as does a non-finite determinant.
-    constexpr double tiny = 1e-90;
-    const bool usable = permanent >= tiny && permanent <= std::numeric_limits<double>::max();
-    const int sign = det > bound * permanent ? 1 : (det < -bound * permanent ? -1 : 0);
-    return {det, usable ? sign : 0};
+    return {det, permanent};
+}
+
+BODT_KERNEL Orientation orient(const Coords& a, const Coords& b, const Coords& c, const Coords& d) {
+    const OrientTerms o = orient_terms(a, b, c, d);
+    return {o.det, o.positive() ? 1 : (o.negative() ? -1 : 0)};
 }
 
 inline Orientation orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -117,15 +133,20 @@ struct TetShape {
 struct TetKernel {
     double det6;     // orient()
     int sign;        // orient()
+    // 1 when sign is +1, else 0: a double, so that a vectorised loop over
+    // tets that tests it needs no mask of another width (GCC 12 cannot
+    // convert them).
+    double positive;
     double stretch;  // 6 sqrt(6) V / (sum of face areas * longest edge), eq. 3.1 of papers 001 and 002
     double cos[6];   // interior dihedral cosines in kEdgeVertex order, in [-1, 1]
 };
 
 BODT_KERNEL TetKernel tet_kernel(const Coords& p0, const Coords& p1, const Coords& p2, const Coords& p3) {
     TetKernel k;
-    const Orientation o = orient(p0, p1, p2, p3);
-    k.det6 = o.det6;
-    k.sign = o.sign;
+    const OrientTerms o = orient_terms(p0, p1, p2, p3);
+    k.det6 = o.det;
+    k.sign = o.positive() ? 1 : (o.negative() ? -1 : 0);
+    k.positive = o.positive() ? 1.0 : 0.0;
     // Face normals as kFaceVertex orders them (face i opposite corner i,
     // pointing out of a positive tet), their lengths (twice the face areas)
     // and inverse lengths.
@@ -146,7 +167,7 @@ BODT_KERNEL TetKernel tet_kernel(const Coords& p0, const Coords& p1, const Coord
         lmax2 = std::max(lmax2, dot(e[i], e[i]));
         const int f = kEdgeFaces[i][0], g = kEdgeFaces[i][1];
         const double c = -dot(n[f], n[g]) * inv[f] * inv[g];
-        k.cos[i] = len[f] > 0.0 && len[g] > 0.0 ? std::min(1.0, std::max(-1.0, c)) : 1.0;
+        k.cos[i] = ((len[f] > 0.0) & (len[g] > 0.0)) ? std::min(1.0, std::max(-1.0, c)) : 1.0;
     }
     const double denom = area2 * std::sqrt(lmax2);
     k.stretch = denom > 0.0 ? 2.0 * std::sqrt(6.0) * k.det6 / denom : 0.0;
@@ -173,7 +194,8 @@ BODT_KERNEL TetShape shape_of(const TetKernel& k) {
         s.cosines.of_min = std::max(s.cosines.of_min, k.cos[e]);
         s.cosines.of_max = std::min(s.cosines.of_max, k.cos[e]);
     }
-    if (k.sign <= 0) s.cosines = {1.0, -1.0};
+    const bool positive = k.positive > 0.0;
+    s.cosines = {positive ? s.cosines.of_min : 1.0, positive ? s.cosines.of_max : -1.0};
     return s;
 }
 

@@ -14,30 +14,31 @@ Vec3 face_normal(const TetMesh& mesh, const FaceKey& f) {
 // Star tet s with the vertex at x (star_tet_kernel); its stretch and
 // cosines go to column s of `after` (3 rows of n).  Returns whether it
 // passes the guard.
-BODT_KERNEL bool tet_check(const double* opposite, const int32_t* at, size_t n, size_t s, const Coords& x, double floor,
+BODT_KERNEL bool tet_check(const double* opposite, const double* at, size_t n, size_t s, const Coords& x, double floor,
                            const CosineRange& before, bool never_worse, double* after) {
     const TetKernel k = star_tet_kernel(opposite, at, n, s, x);
     const TetShape shape = shape_of(k);
     after[s] = shape.stretch;
     after[n + s] = shape.cosines.of_min;
     after[2 * n + s] = shape.cosines.of_max;
-    return k.sign > 0 && !(shape.stretch < floor) &&
-           !(never_worse && (shape.cosines.of_min > before.of_min || shape.cosines.of_max < before.of_max));
+    return (k.positive > 0.0) & !(shape.stretch < floor) &
+           !(never_worse & ((shape.cosines.of_min > before.of_min) | (shape.cosines.of_max < before.of_max)));
 }
 
-// Every star tet at once, in a loop the compiler vectorises; failed[s] says
-// whether tet s failed.
+// Every star tet at once, in a loop the compiler vectorises; failed[s] is 1
+// when tet s failed, else 0 (a double: an array of bytes would make GCC
+// take 32 tets a time, more than most stars have).
 BODT_VECTOR_CLONES
-bool star_passes(const double* opposite, const int32_t* at, size_t n, Coords x, const double* floor,
-                 CosineRange before, bool never_worse, double* after, uint8_t* failed) {
-    int bad = 0;
-#pragma omp simd reduction(| : bad)
-    for (size_t s = 0; s < n; ++s) {
-        const int fails = !tet_check(opposite, at, n, s, x, floor[s], before, never_worse, after);
-        failed[s] = static_cast<uint8_t>(fails);
-        bad |= fails;
-    }
-    return bad == 0;
+bool star_passes(const double* opposite, const double* at, size_t n, Coords x, const double* floor,
+                 CosineRange before, bool never_worse, double* after, double* failed) {
+#pragma omp simd
+    for (size_t s = 0; s < n; ++s)
+        failed[s] = tet_check(opposite, at, n, s, x, floor[s], before, never_worse, after) ? 0.0 : 1.0;
+    // Not a reduction in the loop above, which would keep GCC from
+    // vectorising it.
+    double bad = 0.0;
+    for (size_t s = 0; s < n; ++s) bad += failed[s];
+    return bad == 0.0;
 }
 
 }  // namespace
@@ -59,7 +60,7 @@ bool MoveGuard::acceptable(const TetMesh& mesh, const Vec3& at, const std::vecto
     if (star_passes(star_.opposite(), star_.at(), star_.size(), x, floor_.data(), star_before_, settings_.never_worse,
                     after_.data(), failed_.data()))
         return true;
-    last_failed_ = static_cast<size_t>(std::find(failed_.begin(), failed_.end(), 1) - failed_.begin());
+    last_failed_ = static_cast<size_t>(std::find(failed_.begin(), failed_.end(), 1.0) - failed_.begin());
     return false;
 }
 

@@ -10,7 +10,7 @@ void StarTable::gather(const TetMesh& mesh, int32_t v) {
         const Tet& q = mesh.tets[star[s]];
         // Without branches: the corner is as good as random from tet to tet.
         const int at = (q[1] == v) + 2 * (q[2] == v) + 3 * (q[3] == v);
-        at_[s] = at;
+        at_[s] = static_cast<double>(at);
         for (int k = 0; k < 3; ++k) {
             const Vec3& c = mesh.points[q[kFaceVertex[at][k]]];
             opposite_[k * n + s] = c.x();
@@ -28,7 +28,7 @@ void StarTable::resize(size_t n) {
 
 void StarTable::set(size_t s, const TetPoints& p, int at) {
     const size_t n = size_;
-    at_[s] = at;
+    at_[s] = static_cast<double>(at);
     for (int k = 0; k < 3; ++k) {
         const Vec3& c = p[kFaceVertex[at][k]];
         opposite_[k * n + s] = c.x();

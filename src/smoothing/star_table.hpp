@@ -26,19 +26,20 @@ public:
     // kFaceVertex order (the right-hand normal points away from the vertex):
     // x of corners 0..2, then y, then z.  Row r, tet s is opposite()[r * size() + s].
     const double* opposite() const { return opposite_.data(); }
-    // The vertex's corner (0..3) in each tet.
-    const int32_t* at() const { return at_.data(); }
+    // The vertex's corner (0..3) in each tet, as a double: the kernel's
+    // selects on it then need no mask of another width to vectorise.
+    const double* at() const { return at_.data(); }
 
 private:
     size_t size_ = 0;
     std::vector<double> opposite_;
-    std::vector<int32_t> at_;
+    std::vector<double> at_;
 };
 
 // Tet s of a star table with the vertex at x: its corners in the tet's own
 // order, so the kernel gives the bits it gives for the tet in the mesh.
 // Corner j != at is the opposite face's corner k with kFaceVertex[at][k] = j.
-BODT_KERNEL TetKernel star_tet_kernel(const double* opposite, const int32_t* at, size_t n, size_t s, const Coords& x) {
+BODT_KERNEL TetKernel star_tet_kernel(const double* opposite, const double* at, size_t n, size_t s, const Coords& x) {
     const auto face = [opposite, n, s](size_t k) -> Coords {
         return {opposite[k * n + s], opposite[(3 + k) * n + s], opposite[(6 + k) * n + s]};
     };
@@ -46,11 +47,11 @@ BODT_KERNEL TetKernel star_tet_kernel(const double* opposite, const int32_t* at,
         return {first ? a.x : b.x, first ? a.y : b.y, first ? a.z : b.z};
     };
     const Coords f0 = face(0), f1 = face(1), f2 = face(2);
-    const int32_t a = at[s];
-    const Coords c0 = pick(a == 0, x, f0);
-    const Coords c1 = pick(a == 1, x, pick(a == 0, f0, pick(a == 2, f1, f2)));
-    const Coords c2 = pick(a == 2, x, pick(a == 1, f2, f1));
-    const Coords c3 = pick(a == 3, x, pick(a == 1, f1, f2));
+    const double a = at[s];
+    const Coords c0 = pick(a == 0.0, x, f0);
+    const Coords c1 = pick(a == 1.0, x, pick(a == 0.0, f0, pick(a == 2.0, f1, f2)));
+    const Coords c2 = pick(a == 2.0, x, pick(a == 1.0, f2, f1));
+    const Coords c3 = pick(a == 3.0, x, pick(a == 1.0, f1, f2));
     return tet_kernel(c0, c1, c2, c3);
 }
 
