@@ -1918,7 +1918,7 @@ void test_failed_flips(void**) {
     assert_true(outside >= 0);
 
     std::vector<uint32_t> moved_at(static_cast<size_t>(first.num_vertices()), 0);
-    bodt::SweepHistory history{&moved_at, 10, 1, 0};
+    bodt::SweepHistory history{&moved_at, 10, 1};
     bodt::FailedFlips failed;
     failed.begin_pass(first, &history);
     assert_false(failed.repeats(first, a, b));
@@ -2133,12 +2133,9 @@ void test_stuck_tets(void**) {
     // The sweeps' history as SettledVertices keeps it: moves happen between
     // passes, at times before the next pass's `now`.
     std::vector<uint32_t> moved_at(static_cast<size_t>(probe.num_vertices()), 0);
-    bodt::SweepHistory history{&moved_at, 10, 1, 0};
+    bodt::SweepHistory history{&moved_at, 10, 1};
     const auto sweep = [&](uint32_t now, std::initializer_list<std::pair<int32_t, uint32_t>> moves) {
-        for (const auto& m : moves) {
-            moved_at[static_cast<size_t>(m.first)] = m.second;
-            history.last_move = std::max(history.last_move, m.second);
-        }
+        for (const auto& m : moves) moved_at[static_cast<size_t>(m.first)] = m.second;
         history.now = now;
     };
     StuckTets stuck;

@@ -290,7 +290,7 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     // between report every move (the B-ODT sweeps; none without smoothing).
     const bool moves_reported = !(bits & BODT_OP_SMOOTH) || mode_ == BODT_MODE_ODT ||
                                 mode_ == BODT_MODE_BODT_BASIC || mode_ == BODT_MODE_BODT;
-    const SweepHistory history{&settled_.moved_at(), settled_.now(), settled_.epoch(), settled_.last_move()};
+    const SweepHistory history{&settled_.moved_at(), settled_.now(), settled_.epoch()};
     failed_.begin_pass(editable, moves_reported ? &history : nullptr);
     const TopologyCounts counts = improve_topology(editable, settings, failed_);
     if (!counts.changed()) return false;

@@ -14,7 +14,6 @@
 
 #include "mesh/tet_mesh.hpp"
 
-#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -84,11 +83,6 @@ public:
     // changes whenever the times start again.
     const std::vector<uint32_t>& moved_at() const { return moved_at_; }
     uint32_t now() const { return clock_; }
-    // No vertex moved after it: worked out, not kept, so that no sweep can
-    // forget to keep it (one pass over the vertices, per topology pass).
-    uint32_t last_move() const {
-        return moved_at_.empty() ? 0 : *std::max_element(moved_at_.begin(), moved_at_.end());
-    }
     uint64_t epoch() const { return epoch_; }
 
 private:

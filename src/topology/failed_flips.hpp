@@ -37,7 +37,7 @@ public:
             while (bits_ < 15 && (int64_t{4} << bits_) < mesh.tet_capacity()) ++bits_;
             slots_.assign(size_t{1} << bits_, Slot());
         }
-        history_ = history ? *history : SweepHistory{nullptr, 0, 0, 0};
+        history_ = history ? *history : SweepHistory{nullptr, 0, 0};
         epoch_ = history_.epoch;
         remembers_ = history != nullptr;
         ++pass_;
@@ -103,7 +103,7 @@ private:
     uint32_t pass_ = 0;
     uint64_t epoch_ = 0;
     bool remembers_ = false;  // the last pass had a history: its records may outlive it
-    SweepHistory history_{nullptr, 0, 0, 0};
+    SweepHistory history_{nullptr, 0, 0};
 };
 
 }  // namespace bodt

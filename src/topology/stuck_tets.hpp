@@ -18,7 +18,9 @@
 #include "topology/editable_mesh.hpp"
 #include "topology/sweep_history.hpp"
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace bodt {
@@ -32,8 +34,9 @@ public:
         // Without a history nothing is kept, and no room is made for records.
         const bool keep = history && history->epoch == epoch_ && records_.size() == static_cast<size_t>(mesh.tet_capacity());
         if (!keep) records_.assign(history ? static_cast<size_t>(mesh.tet_capacity()) : 0, 0);
-        history_ = history ? *history : SweepHistory{nullptr, 0, 0, 0};
+        history_ = history ? *history : SweepHistory{nullptr, 0, 0};
         epoch_ = history_.epoch;
+        find_last_moves_near(mesh, keep);
     }
 
     // After a connectivity change that kept every vertex's index: the
@@ -66,9 +69,9 @@ public:
         const uint32_t tick = records_[t] >> kBits;
         if (tick >= history_.now)  // this pass's own; no vertex moved after `now`
             return mesh.untouched() || (attempts_holding(mesh, t, tick) & attempt) != 0;
-        // Nothing changed in this pass and nothing moved since: the walk
-        // below would find nothing.
-        if (mesh.untouched() && !history_.any_moved_after(tick)) return true;
+        // Nothing changed in this pass and no vertex of a tet sharing a
+        // vertex with t moved since: the walk below would find nothing.
+        if (mesh.untouched() && last_move_near(mesh.tet(t)) <= tick) return true;
         const uint32_t holding = attempts_holding(mesh, t, tick);
         if (mesh.untouched() && history_.now <= kMaxTick) records_[t] = (history_.now - 1) << kBits | holding;
         return (holding & attempt) != 0;
@@ -107,6 +110,33 @@ private:
         return (records_[t] & (edges ? kFlips : 0u)) | (vertices ? uint32_t{kInsertion} : 0u);
     }
 
+    // last_near_[v]: the last time a vertex of a tet around v moved (0:
+    // never), made at the start of a pass that keeps records from the one
+    // before, where a few moves in the sweeps between would otherwise send
+    // every record on a walk around its tet.  One pass over the tets.
+    void find_last_moves_near(const EditableMesh& mesh, bool keep) {
+        last_near_.clear();
+        if (!keep || !history_.moved_at) return;
+        last_near_.assign(static_cast<size_t>(mesh.num_vertices()), 0);
+        for (int32_t t = 0; t < mesh.tet_capacity(); ++t) {
+            if (!mesh.alive(t)) continue;
+            const Tet& q = mesh.tet(t);
+            uint32_t last = 0;
+            for (int32_t v : q)
+                if (static_cast<size_t>(v) < history_.moved_at->size()) last = std::max(last, (*history_.moved_at)[v]);
+            for (int32_t v : q) last_near_[v] = std::max(last_near_[v], last);
+        }
+    }
+    // The last move of a vertex of a tet sharing a vertex with q (a pass
+    // with records from before has the table; without it, a time no record
+    // is older than).
+    uint32_t last_move_near(const Tet& q) const {
+        if (last_near_.empty()) return std::numeric_limits<uint32_t>::max();
+        uint32_t last = 0;
+        for (int32_t v : q) last = std::max(last, last_near_[v]);
+        return last;
+    }
+
     static int shared_vertices(const Tet& a, const Tet& b) {
         int n = 0;
         for (int32_t v : b) n += holds(a, v);
@@ -117,7 +147,8 @@ private:
     static constexpr uint32_t kMaxTick = uint32_t{1} << (32 - kBits);
 
     std::vector<uint32_t> records_;  // per tet: the sweeps' clock << kBits | the attempts that failed then
-    SweepHistory history_{nullptr, 0, 0, 0};
+    std::vector<uint32_t> last_near_;  // per vertex, see find_last_moves_near (empty: none)
+    SweepHistory history_{nullptr, 0, 0};
     uint64_t epoch_ = 0;
 };
 

@@ -14,12 +14,10 @@ struct SweepHistory {
     const std::vector<uint32_t>* moved_at;  // per vertex, 0: never; may be shorter (never)
     uint32_t now;
     uint64_t epoch;
-    uint32_t last_move;  // no vertex moved after it
 
     bool moved_after(int32_t v, uint32_t tick) const {
         return moved_at && static_cast<size_t>(v) < moved_at->size() && (*moved_at)[v] > tick;
     }
-    bool any_moved_after(uint32_t tick) const { return moved_at && last_move > tick; }
 };
 
 }  // namespace bodt
