@@ -81,6 +81,7 @@ struct OrientTerms {
     }
     BODT_KERNEL bool positive() const { return usable() & (det > kBound * permanent); }
     BODT_KERNEL bool negative() const { return usable() & (det < -kBound * permanent); }
+    BODT_KERNEL int sign() const { return positive() ? 1 : (negative() ? -1 : 0); }
 };
 
 BODT_KERNEL OrientTerms orient_terms(const Coords& a, const Coords& b, const Coords& c, const Coords& d) {
@@ -95,7 +96,7 @@ BODT_KERNEL OrientTerms orient_terms(const Coords& a, const Coords& b, const Coo
 
 BODT_KERNEL Orientation orient(const Coords& a, const Coords& b, const Coords& c, const Coords& d) {
     const OrientTerms o = orient_terms(a, b, c, d);
-    return {o.det, o.positive() ? 1 : (o.negative() ? -1 : 0)};
+    return {o.det, o.sign()};
 }
 
 inline Orientation orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -145,7 +146,7 @@ BODT_KERNEL TetKernel tet_kernel(const Coords& p0, const Coords& p1, const Coord
     TetKernel k;
     const OrientTerms o = orient_terms(p0, p1, p2, p3);
     k.det6 = o.det;
-    k.sign = o.positive() ? 1 : (o.negative() ? -1 : 0);
+    k.sign = o.sign();
     k.positive = o.positive() ? 1.0 : 0.0;
     // Face normals as kFaceVertex orders them (face i opposite corner i,
     // pointing out of a positive tet), their lengths (twice the face areas)

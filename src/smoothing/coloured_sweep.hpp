@@ -66,17 +66,31 @@ void release_higher(const TetMesh& mesh, const std::vector<int32_t>& colour, int
     for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
         for (const int32_t w : mesh.tets[*t]) {
             if (colour[w] <= c) continue;
-            if constexpr (!grouped) {
-                if (release(w, 1)) ready.push_back(w);
-                continue;
+            if constexpr (grouped) {
+                auto it = pairs.begin();
+                while (it != pairs.end() && it->first != w) ++it;
+                if (it == pairs.end()) pairs.push_back({w, 1});
+                else ++it->second;
+            } else if (release(w, 1)) {
+                ready.push_back(w);
             }
-            auto it = pairs.begin();
-            while (it != pairs.end() && it->first != w) ++it;
-            if (it == pairs.end()) pairs.push_back({w, 1});
-            else ++it->second;
         }
     for (const auto& [w, k] : pairs)
         if (release(w, k)) ready.push_back(w);
+}
+
+// Visits source vertex v (no neighbour of lower colour), then, depth
+// first, every vertex its visits make ready.
+template <bool grouped, class State, class Body, class Release>
+void visit_from(const TetMesh& mesh, const std::vector<int32_t>& colour, int32_t v, Body& body, State& state,
+                std::vector<std::pair<int32_t, int32_t>>& pairs, std::vector<int32_t>& ready, Release release) {
+    ready.push_back(v);
+    while (!ready.empty()) {
+        const int32_t u = ready.back();
+        ready.pop_back();
+        visit_vertex(body, state, u, colour[u]);
+        release_higher<grouped>(mesh, colour, u, pairs, ready, release);
+    }
 }
 
 }  // namespace detail
@@ -105,16 +119,9 @@ std::vector<State> coloured_sweep(const TetMesh& mesh, int threads, const State&
     if (threads == 1) {
         std::vector<int32_t> pending(lower);
         const auto release = [&pending](int32_t w, int32_t k) { return (pending[w] -= k) == 0; };
-        for (int32_t v = 0; v < n; ++v) {
-            if (colour[v] < 0 || lower[v] != 0) continue;
-            ready.push_back(v);
-            while (!ready.empty()) {
-                const int32_t u = ready.back();
-                ready.pop_back();
-                detail::visit_vertex(body, states[0], u, colour[u]);
-                detail::release_higher<false>(mesh, colour, u, pairs, ready, release);
-            }
-        }
+        for (int32_t v = 0; v < n; ++v)
+            if (colour[v] >= 0 && lower[v] == 0)
+                detail::visit_from<false>(mesh, colour, v, body, states[0], pairs, ready, release);
         return states;
     }
 
@@ -136,19 +143,13 @@ std::vector<State> coloured_sweep(const TetMesh& mesh, int threads, const State&
         const size_t me = 0;
 #endif
         try {
-            for (int32_t begin; !failed.load(std::memory_order_relaxed) &&
-                                (begin = next_run.fetch_add(kRun, std::memory_order_relaxed)) < n;) {
+            while (!failed.load(std::memory_order_relaxed)) {
+                const int32_t begin = next_run.fetch_add(kRun, std::memory_order_relaxed);
+                if (begin >= n) break;
                 const int32_t end = std::min(n, begin + kRun);
-                for (int32_t v = begin; v < end && !failed.load(std::memory_order_relaxed); ++v) {
-                    if (colour[v] < 0 || lower[v] != 0) continue;
-                    ready.push_back(v);
-                    while (!ready.empty()) {
-                        const int32_t u = ready.back();
-                        ready.pop_back();
-                        detail::visit_vertex(body, states[me], u, colour[u]);
-                        detail::release_higher<true>(mesh, colour, u, pairs, ready, release);
-                    }
-                }
+                for (int32_t v = begin; v < end && !failed.load(std::memory_order_relaxed); ++v)
+                    if (colour[v] >= 0 && lower[v] == 0)
+                        detail::visit_from<true>(mesh, colour, v, body, states[me], pairs, ready, release);
             }
         } catch (...) {
             errors[me] = std::current_exception();

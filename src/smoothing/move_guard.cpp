@@ -25,20 +25,18 @@ BODT_KERNEL bool tet_check(const double* opposite, const double* at, size_t n, s
            !(never_worse & ((shape.cosines.of_min > before.of_min) | (shape.cosines.of_max < before.of_max)));
 }
 
-// Every star tet at once, in a loop the compiler vectorises; failed[s] is 1
-// when tet s failed, else 0 (a double: an array of bytes would make GCC
-// take 32 tets a time, more than most stars have).
+// Every star tet at once, in a loop the compiler vectorises; returns the
+// first tet that failed, n when none did.  `failed` is scratch for a flag
+// per tet: a double, since an array of bytes would make GCC take 32 tets
+// a time, more than most stars have; and a search after the loop, since a
+// reduction in it would keep GCC from vectorising it.
 BODT_VECTOR_CLONES
-bool star_passes(const double* opposite, const double* at, size_t n, Coords x, const double* floor,
-                 CosineRange before, bool never_worse, double* after, double* failed) {
+size_t first_failing(const double* opposite, const double* at, size_t n, Coords x, const double* floor,
+                     CosineRange before, bool never_worse, double* after, double* failed) {
 #pragma omp simd
     for (size_t s = 0; s < n; ++s)
         failed[s] = tet_check(opposite, at, n, s, x, floor[s], before, never_worse, after) ? 0.0 : 1.0;
-    // Not a reduction in the loop above, which would keep GCC from
-    // vectorising it.
-    double bad = 0.0;
-    for (size_t s = 0; s < n; ++s) bad += failed[s];
-    return bad == 0.0;
+    return static_cast<size_t>(std::find(failed, failed + n, 1.0) - failed);
 }
 
 }  // namespace
@@ -57,10 +55,10 @@ bool MoveGuard::acceptable(const TetMesh& mesh, const Vec3& at, const std::vecto
         if (!tet_passes(k, x)) return false;
     // A shorter move mostly fails where the longer one did: that tet next.
     if (last_failed_ < star_.size() && !tet_passes(last_failed_, x)) return false;
-    if (star_passes(star_.opposite(), star_.at(), star_.size(), x, floor_.data(), star_before_, settings_.never_worse,
-                    after_.data(), failed_.data()))
-        return true;
-    last_failed_ = static_cast<size_t>(std::find(failed_.begin(), failed_.end(), 1.0) - failed_.begin());
+    const size_t first = first_failing(star_.opposite(), star_.at(), star_.size(), x, floor_.data(), star_before_,
+                                       settings_.never_worse, after_.data(), failed_.data());
+    if (first == star_.size()) return true;
+    last_failed_ = first;
     return false;
 }
 

@@ -52,7 +52,7 @@ private:
     StarTable star_;
     std::vector<double> floor_;      // each star tet's stretch floor
     std::vector<double> after_;      // 3 rows of star size: each star tet's stretch, cosines of_min, of_max at the place tried
-    std::vector<double> failed_;     // each star tet failed at the place tried (1) or not (0)
+    std::vector<double> failed_;     // first_failing()'s scratch
     size_t last_failed_ = 0;         // a star tet that failed the last try (star size: none)
     std::vector<Vec3> normals_;      // normal of each watched face before the move (reused)
     CosineRange star_before_{-1.0, 1.0};  // the star's smallest and largest angle before

@@ -10,7 +10,7 @@ set -euo pipefail
 lib=$1
 listing=$(objdump -d --no-show-raw-insn "$lib")
 fail=0
-for fn in star_passes star_terms block_shapes; do
+for fn in first_failing star_terms block_shapes; do
   for clone in avx512f avx2; do
     packed=$(awk -v fn="$fn" -v clone="$clone" '
       />:$/ { inside = index($0, fn) > 0 && index($0, "." clone ">:") > 0; next }
