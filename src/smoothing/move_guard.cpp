@@ -29,14 +29,19 @@ BODT_KERNEL bool tet_check(const double* opposite, const double* at, size_t n, s
 // first tet that failed, n when none did.  `failed` is scratch for a flag
 // per tet: a double, since an array of bytes would make GCC take 32 tets
 // a time, more than most stars have; and a search after the loop, since a
-// reduction in it would keep GCC from vectorising it.
+// reduction in it would keep GCC from vectorising it.  The search is a
+// plain loop: a call out of the clone (std::find is one) leaves the upper
+// halves of the vector registers dirty for the SSE code after it, which
+// then runs a third slower (the flip pass after a sweep did).
 BODT_VECTOR_CLONES
 size_t first_failing(const double* opposite, const double* at, size_t n, Coords x, const double* floor,
                      CosineRange before, bool never_worse, double* after, double* failed) {
 #pragma omp simd
     for (size_t s = 0; s < n; ++s)
         failed[s] = tet_check(opposite, at, n, s, x, floor[s], before, never_worse, after) ? 0.0 : 1.0;
-    return static_cast<size_t>(std::find(failed, failed + n, 1.0) - failed);
+    size_t first = 0;
+    while (first < n && failed[first] == 0.0) ++first;
+    return first;
 }
 
 }  // namespace

@@ -57,18 +57,15 @@ public:
 
     // The attempt on t failed in an earlier pass, and since then no vertex
     // of a tet sharing an edge (flips) or a vertex (insertion) with t moved
-    // (sweeps) or changed (this pass); or it failed in this pass, and no
-    // such vertex changed in this pass at all (the stamps cannot tell
-    // whether a change came before or after the record, only that none
-    // came: the flip pass after an insertion then passes over the bad tets
-    // far from the new vertices).  A record found to hold while this pass
-    // has changed nothing is brought up to now, so that on a settled mesh
-    // the next pass finds it without looking around t.
+    // (sweeps) or changed (this pass).  A record of this pass is not read:
+    // repeats within a pass are FailedFlips' (per edge and face, cheaper
+    // than a walk around t).  A record found to hold while this pass has
+    // changed nothing is brought up to now, so that on a settled mesh the
+    // next pass finds it without looking around t.
     bool stuck(const EditableMesh& mesh, int32_t t, Attempt attempt) {
         if (static_cast<size_t>(t) >= records_.size() || !(records_[t] & attempt)) return false;
         const uint32_t tick = records_[t] >> kBits;
-        if (tick >= history_.now)  // this pass's own; no vertex moved after `now`
-            return mesh.untouched() || (attempts_holding(mesh, t, tick) & attempt) != 0;
+        if (tick >= history_.now) return false;  // this pass's own: the stamps alone cannot tell
         // Nothing changed in this pass and no vertex of a tet sharing a
         // vertex with t moved since: the walk below would find nothing.
         if (mesh.untouched() && last_move_near(mesh.tet(t)) <= tick) return true;
