@@ -96,6 +96,11 @@
 //                        history forgets them
 //   carried_over         the neighbours and shapes carried over after a
 //                        pass are those a full build finds
+//   carried_colouring_and_surfaces
+//                        after flips and splits, in a shuffled caller's
+//                        order: the colouring brought up to date is the one
+//                        a full colouring makes; surfaces found kept are
+//                        those a full build makes
 //   read_differently     what a B-ODT target reads besides points (class;
 //                        a surface or feature-line vertex's one-rings, in
 //                        order), compared across a change
@@ -104,6 +109,7 @@
 #include "mesh/mesh_builder.hpp"
 #include "mesh/region_surfaces.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "mesh/vertex_colouring.hpp"
 #include "quality/mesh_quality.hpp"
 #include "quality/tet_geometry.hpp"
 #include "smoothing/bodt_smoother.hpp"
@@ -1998,6 +2004,90 @@ void test_carried_over(void**) {
                             bodt::tet_shapes(after.mesh, 1)));
 }
 
+// After changes that keep every vertex's index (flips and splits), in a
+// caller's order other than the internal one: the colouring brought up to
+// date around the changed vertices is the one a full colouring makes, also
+// where a colour changed away from them; the region surfaces are found kept
+// only when a full build gives the same ones (every one-ring as before),
+// and found changed after changes on the surface.
+void test_carried_colouring_and_surfaces(void**) {
+    const Case c = kuhn_box(6, 0.25, 41, true);
+    TetMesh before = c.mesh;
+    std::mt19937 rng(5);
+    const int32_t n = before.num_vertices();
+    std::vector<int32_t> order(static_cast<size_t>(n));
+    for (int32_t v = 0; v < n; ++v) order[v] = v;
+    std::shuffle(order.begin(), order.end(), rng);
+    before.caller.vertex_to_caller = order;
+    before.caller.vertex_from_caller.resize(order.size());
+    for (int32_t v = 0; v < n; ++v) before.caller.vertex_from_caller[order[v]] = v;
+    bodt::RegionSurfaces surfaces;
+    surfaces.build(before, 0, bodt::BoundarySurface::Strictness::Strict);
+    const bodt::VertexColouring& colouring = before.colouring();
+    int kept = 0, regrown = 0, far_recoloured = 0;
+    for (int round = 0; round < 40; ++round) {
+        EditableMesh em(before, c.classes);
+        // Even rounds keep only changes that kept the surfaces.
+        const auto write = [&before, &em](TetMesh& after) {
+            em.write_to(after);
+            after.build_topology(em.written_neighbors(before.neighbors, em.written_tets()));
+            after.caller = before.caller;
+        };
+        const int ops = 1 + round % 4;
+        for (int done = 0, i = 0; done < ops && i < 400; ++i) {
+            const size_t mark = em.checkpoint();
+            if (!random_op(em, rng, static_cast<OpKind>(std::uniform_int_distribution<int>(0, 3)(rng)), loose_rules()))
+                continue;
+            TetMesh trial;
+            write(trial);
+            if (round % 2 == 0 && !bodt::RegionSurfaces::kept_by(before, trial, em.written_tets())) em.rollback(mark);
+            else ++done;
+        }
+        const std::vector<int32_t> written = em.written_tets();
+        TetMesh after;
+        write(after);
+        std::vector<int32_t> stamped;
+        for (int32_t v = 0; v < em.num_vertices(); ++v)
+            if (em.stamp(v) != 0) stamped.push_back(v);
+        after.carry_colouring(before, stamped);
+        const bodt::VertexColouring& carried = after.colouring();
+        const bodt::VertexColouring full = bodt::colour_vertices(after);
+        assert_true(carried.colour == full.colour);
+        assert_true(carried.lower == full.lower);
+        assert_int_equal(carried.count, full.count);
+        for (int32_t v = 0; v < n; ++v)
+            far_recoloured += em.stamp(v) == 0 && carried.colour[v] != colouring.colour[v];
+
+        bodt::RegionSurfaces built;
+        built.build(after, 0, bodt::BoundarySurface::Strictness::Tolerant);
+        std::vector<int32_t> a, b;
+        bool same = true;
+        for (int32_t v = 0; v < after.num_vertices(); ++v) {
+            if (v < n) surfaces.surface(0).one_ring(v, a);
+            else a.clear();
+            built.surface(0).one_ring(v, b);
+            same = same && a == b;
+        }
+        if (bodt::RegionSurfaces::kept_by(before, after, written)) {
+            assert_true(same);
+            ++kept;
+        } else if (!same) {
+            ++regrown;
+        }
+    }
+    print_message("colouring and surfaces carried: %d rounds kept the surfaces, %d changed them, %d colours changed "
+                  "away from the changes\n", kept, regrown, far_recoloured);
+    assert_true(kept >= 10 && regrown >= 10 && far_recoloured > 0);
+    // Surfaces still grown in a caller's tet order are never kept.
+    TetMesh in_caller_order = before;
+    in_caller_order.caller.tet_to_caller.resize(static_cast<size_t>(before.num_tets()));
+    for (int32_t t = 0; t < before.num_tets(); ++t) in_caller_order.caller.tet_to_caller[t] = before.num_tets() - 1 - t;
+    std::vector<int32_t> same_tets(static_cast<size_t>(before.num_tets()));
+    for (int32_t t = 0; t < before.num_tets(); ++t) same_tets[t] = t;
+    assert_true(bodt::RegionSurfaces::kept_by(before, before, same_tets));
+    assert_false(bodt::RegionSurfaces::kept_by(in_caller_order, before, same_tets));
+}
+
 // What a B-ODT target reads besides points, compared across a change:
 // nothing when nothing changed; a vertex whose class changed; the vertices
 // whose one-rings start elsewhere once the surface grows from the tets in
@@ -2282,6 +2372,7 @@ int main(void) {
         cmocka_unit_test(test_failed_flips),
         cmocka_unit_test(test_stuck_tets),
         cmocka_unit_test(test_carried_over),
+        cmocka_unit_test(test_carried_colouring_and_surfaces),
         cmocka_unit_test(test_read_differently),
         cmocka_unit_test(test_stamps),
     };

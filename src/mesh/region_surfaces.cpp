@@ -29,4 +29,32 @@ void RegionSurfaces::build(const TetMesh& mesh, int base, BoundarySurface::Stric
         for (int32_t v : surfaces_[k].vertices()) at_[fill[v]++] = k;
 }
 
+namespace {
+
+// No face of tet t is on a region surface.
+bool inner_tet(const TetMesh& mesh, int32_t t) {
+    for (const int32_t s : mesh.neighbors[t])
+        if (s < 0 || mesh.regions[s] != mesh.regions[t]) return false;
+    return true;
+}
+
+}  // namespace
+
+// The operations replace a cavity by new tets with the same boundary, so a
+// cavity of inner tets leaves every surface face where it was; the new
+// tets are checked too.  The surfaces grow in the caller's tet order
+// (BoundarySurface), which the tets still there keep unless `before` had
+// not left it for the internal one yet.
+bool RegionSurfaces::kept_by(const TetMesh& before, const TetMesh& after, const std::vector<int32_t>& written) {
+    if (before.tet_origin.empty() && !before.caller.tet_to_caller.empty()) return false;
+    int32_t kept = 0;
+    for (int32_t t = 0; t < before.num_tets(); ++t) {
+        if (written[t] >= 0) ++kept;
+        else if (!inner_tet(before, t)) return false;
+    }
+    for (int32_t t = kept; t < after.num_tets(); ++t)
+        if (!inner_tet(after, t)) return false;
+    return true;
+}
+
 }  // namespace bodt

@@ -20,6 +20,22 @@ public:
     // index base for messages.
     void build(const TetMesh& mesh, int base, BoundarySurface::Strictness strictness);
 
+    // Whether a connectivity change from `before` to `after` kept every
+    // face of the region surfaces, in the order the surfaces grow from
+    // (the tets' order), so that a build on `after` makes the surfaces of
+    // `before` again: no tet with a face on a region surface went or came.
+    // `written` maps each tet of `before` to its index in `after`, -1 if
+    // it went (EditableMesh::written_tets: those still there come first,
+    // in their order, the new ones after them).
+    static bool kept_by(const TetMesh& before, const TetMesh& after, const std::vector<int32_t>& written);
+    // The vertices of a mesh grown to `nv` vertices by a change that kept
+    // every surface face (the new vertices lie on none).
+    void add_vertices(int32_t nv) {
+        const int32_t end = offset_.back();
+        offset_.resize(static_cast<size_t>(nv) + 1, end);
+        if (!blocked_.empty()) blocked_.resize(static_cast<size_t>(nv), 0);
+    }
+
     // True when some surface has no closed ring around v: v cannot move.
     bool blocked(int32_t v) const { return !blocked_.empty() && blocked_[v]; }
 

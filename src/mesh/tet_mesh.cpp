@@ -263,6 +263,10 @@ const VertexColouring& TetMesh::colouring() const {
     return *colouring_;
 }
 
+void TetMesh::carry_colouring(const TetMesh& before, const std::vector<int32_t>& changed) {
+    if (before.colouring_) colouring_ = std::make_shared<const VertexColouring>(recolour_vertices(*this, *before.colouring_, changed));
+}
+
 std::vector<SurfaceFace> TetMesh::surface_faces() const {
     std::vector<std::pair<FaceKey, SurfaceFace>> keyed;  // sorted by the caller's vertex indices
     const std::vector<uint8_t> marked = marked_face_vertices();

@@ -166,6 +166,12 @@ public:
     // and kept until build_topology (a copy of the mesh shares it).  Not to
     // be called from several threads at once.
     const VertexColouring& colouring() const;
+    // After a connectivity change that kept the index of every vertex of
+    // `before` (EditableMesh::write_to; made vertices after them): the
+    // colouring of `before`, if it made one, brought up to date around the
+    // vertices whose tets changed (recolour_vertices), instead of made
+    // anew when first asked for.  Call it after build_topology.
+    void carry_colouring(const TetMesh& before, const std::vector<int32_t>& changed);
 
     // Recompute the boundary, interface and unused bits of vflags (the fixed
     // bit is kept), after regions or markers changed.

@@ -1,33 +1,102 @@
 #include "mesh/vertex_colouring.hpp"
 
+#include <algorithm>
+#include <functional>
+#include <queue>
+
 namespace bodt {
+
+namespace {
+
+// The smallest colour that no neighbour u of v with earlier(u) has.
+// taken_by[c] == v: such a neighbour has colour c (grown as needed).
+template <class Earlier>
+int32_t first_free_colour(const TetMesh& mesh, int32_t v, const std::vector<int32_t>& colour,
+                          std::vector<int32_t>& taken_by, Earlier earlier) {
+    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
+        for (const int32_t u : mesh.tets[*t]) {
+            const int32_t c = colour[u];
+            if (c >= 0 && earlier(u)) taken_by[c] = v;
+        }
+    int32_t c = 0;
+    while (c < static_cast<int32_t>(taken_by.size()) && taken_by[c] == v) ++c;
+    if (c == static_cast<int32_t>(taken_by.size())) taken_by.push_back(-1);
+    return c;
+}
+
+int32_t lower_pairs(const TetMesh& mesh, int32_t v, const std::vector<int32_t>& colour) {
+    int32_t n = 0;
+    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
+        for (const int32_t u : mesh.tets[*t]) n += colour[u] < colour[v];
+    return n;
+}
+
+}  // namespace
 
 VertexColouring colour_vertices(const TetMesh& mesh) {
     const int32_t n = mesh.num_vertices();
     VertexColouring out;
     std::vector<int32_t>& colour = out.colour;
     colour.assign(static_cast<size_t>(n), -1);
-    std::vector<int32_t> taken_by;  // taken_by[c] == v: a neighbour of v has colour c
+    std::vector<int32_t> taken_by;
     // Greedy in the caller's order, so the colours (and with them the
-    // results of a sweep) do not depend on the internal order.
+    // results of a sweep) do not depend on the internal order.  A vertex
+    // not coloured yet has colour -1: every coloured one comes earlier.
     for (int32_t caller = 0; caller < n; ++caller) {
         const int32_t v = mesh.internal_vertex(caller);
         if (mesh.star_begin(v) == mesh.star_end(v)) continue;
-        for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
-            for (const int32_t u : mesh.tets[*t]) {
-                const int32_t c = colour[u];
-                if (c >= 0) taken_by[c] = v;
-            }
-        int32_t c = 0;
-        while (c < static_cast<int32_t>(taken_by.size()) && taken_by[c] == v) ++c;
-        if (c == static_cast<int32_t>(taken_by.size())) taken_by.push_back(-1);
-        colour[v] = c;
+        colour[v] = first_free_colour(mesh, v, colour, taken_by, [](int32_t) { return true; });
     }
     out.count = static_cast<int32_t>(taken_by.size());
-    out.lower.assign(static_cast<size_t>(n), 0);
-    for (int32_t v = 0; v < n; ++v)
+    out.lower.resize(static_cast<size_t>(n));
+    for (int32_t v = 0; v < n; ++v) out.lower[v] = lower_pairs(mesh, v, colour);
+    return out;
+}
+
+VertexColouring recolour_vertices(const TetMesh& mesh, const VertexColouring& before,
+                                  const std::vector<int32_t>& changed) {
+    const int32_t n = mesh.num_vertices();
+    VertexColouring out;
+    out.colour = before.colour;
+    out.colour.resize(static_cast<size_t>(n), -1);
+    out.lower = before.lower;
+    out.lower.resize(static_cast<size_t>(n), 0);
+    std::vector<int32_t>& colour = out.colour;
+    // Vertices to colour again, by caller index, smallest first; each is
+    // queued once, as every later push comes after the one being coloured.
+    std::priority_queue<int32_t, std::vector<int32_t>, std::greater<int32_t>> queue;
+    std::vector<uint8_t> queued(static_cast<size_t>(n), 0), recount(static_cast<size_t>(n), 0);
+    std::vector<int32_t> counted;
+    const auto count_again = [&](int32_t v) {
+        if (!recount[v]) counted.push_back(v);
+        recount[v] = 1;
+    };
+    for (int32_t v : changed) {
+        if (!queued[v]) queue.push(mesh.caller_vertex(v));
+        queued[v] = 1;
+    }
+    std::vector<int32_t> taken_by(static_cast<size_t>(before.count), -1);
+    while (!queue.empty()) {
+        const int32_t rank = queue.top();
+        queue.pop();
+        const int32_t v = mesh.internal_vertex(rank);
+        count_again(v);
+        const bool used = mesh.star_begin(v) != mesh.star_end(v);
+        const auto earlier = [&mesh, rank](int32_t u) { return mesh.caller_vertex(u) < rank; };
+        const int32_t c = used ? first_free_colour(mesh, v, colour, taken_by, earlier) : -1;
+        if (c == colour[v]) continue;
+        colour[v] = c;
         for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
-            for (const int32_t u : mesh.tets[*t]) out.lower[v] += colour[u] < colour[v];
+            for (const int32_t u : mesh.tets[*t]) {
+                count_again(u);
+                if (!queued[u] && mesh.caller_vertex(u) > rank) {
+                    queued[u] = 1;
+                    queue.push(mesh.caller_vertex(u));
+                }
+            }
+    }
+    out.count = colour.empty() ? 0 : 1 + *std::max_element(colour.begin(), colour.end());
+    for (int32_t v : counted) out.lower[v] = lower_pairs(mesh, v, colour);
     return out;
 }
 

@@ -28,4 +28,15 @@ struct VertexColouring {
 // has taken yet: the colours are the same in any internal order.
 VertexColouring colour_vertices(const TetMesh& mesh);
 
+// The same colouring after a connectivity change, from the one `before`
+// it: `mesh` has every vertex the mesh before had at the same index (new
+// ones after them), and `changed` lists every vertex whose tets changed.
+// A vertex's greedy colour depends only on the colours of its neighbours
+// earlier in the caller's order, so only the changed vertices, and the
+// later neighbours of any vertex whose colour changed, are coloured again,
+// in that order: the result is colour_vertices(mesh), bit for bit,
+// without a pass over every star.
+VertexColouring recolour_vertices(const TetMesh& mesh, const VertexColouring& before,
+                                  const std::vector<int32_t>& changed);
+
 }  // namespace bodt

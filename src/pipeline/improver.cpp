@@ -303,20 +303,40 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     const std::vector<int32_t> renumber = editable.write_to(changed);
     require_finite(changed.points);
     changed.build_topology(editable.written_neighbors(mesh.neighbors, written));
+    const bool same_indices = kept_vertex_indices(renumber, mesh.num_vertices());
+    const bool surfaces_kept = same_indices && RegionSurfaces::kept_by(mesh, changed, written);
     RegionSurfaces rebuilt;
-    rebuilt.build(changed, 0, BoundarySurface::Strictness::Tolerant);
+    if (surfaces_kept) {
+        rebuilt = surfaces;
+        rebuilt.add_vertices(changed.num_vertices());
+    } else {
+        rebuilt.build(changed, 0, BoundarySurface::Strictness::Tolerant);
+    }
     ShapeCache shapes = editable.written_shapes(written, shapes_, changed);
     changed.take_caller_data(mesh);
     VertexClasses now;
     std::vector<int32_t> touched;
-    const bool carry = classes_valid_ && kept_vertex_indices(renumber, mesh.num_vertices());
+    const bool carry = classes_valid_ && same_indices;
     try {
-        if (carry) {
+        // The vertices whose points or tets the change touched.
+        std::vector<int32_t> stamped;
+        for (int32_t v = 0; v < editable.num_vertices(); ++v)
+            if (editable.stamp(v) != 0 && renumber[v] >= 0) stamped.push_back(renumber[v]);
+        if (same_indices) changed.carry_colouring(mesh, stamped);
+        if (carry && surfaces_kept) {
+            // The classes come from the surfaces, which are as they were;
+            // the new vertices are inside.
+            now = classes_;
+            now.cls.resize(changed.points.size(), VertexClass::Interior);
+            now.line.resize(changed.points.size(), {-1, -1});
+            touched = stamped;
+        } else if (carry) {
             // The classes the next sweep would make (the points stay until then).
             now = classify(changed, rebuilt);
             touched = BodtSmoother::read_differently(classes_, surfaces, now, rebuilt);
-            for (int32_t v = 0; v < editable.num_vertices(); ++v)
-                if (editable.stamp(v) != 0 && renumber[v] >= 0) touched.push_back(renumber[v]);
+            touched.insert(touched.end(), stamped.begin(), stamped.end());
+        }
+        if (carry) {
             settled_.reserve(changed.points.size());
             failed_.tets.reserve(changed.tets.size());
         }
