@@ -1,8 +1,6 @@
 #include "mesh/vertex_colouring.hpp"
 
 #include <algorithm>
-#include <functional>
-#include <queue>
 
 namespace bodt {
 
@@ -62,23 +60,22 @@ VertexColouring recolour_vertices(const TetMesh& mesh, const VertexColouring& be
     out.lower = before.lower;
     out.lower.resize(static_cast<size_t>(n), 0);
     std::vector<int32_t>& colour = out.colour;
-    // Vertices to colour again, by caller index, smallest first; each is
-    // queued once, as every later push comes after the one being coloured.
-    std::priority_queue<int32_t, std::vector<int32_t>, std::greater<int32_t>> queue;
+    // Vertices to colour again, flagged by caller index and taken in that
+    // order: a vertex is flagged only by one before it.
     std::vector<uint8_t> queued(static_cast<size_t>(n), 0), recount(static_cast<size_t>(n), 0);
     std::vector<int32_t> counted;
     const auto count_again = [&](int32_t v) {
         if (!recount[v]) counted.push_back(v);
         recount[v] = 1;
     };
+    int32_t first = n;
     for (int32_t v : changed) {
-        if (!queued[v]) queue.push(mesh.caller_vertex(v));
-        queued[v] = 1;
+        queued[mesh.caller_vertex(v)] = 1;
+        first = std::min(first, mesh.caller_vertex(v));
     }
     std::vector<int32_t> taken_by(static_cast<size_t>(before.count), -1);
-    while (!queue.empty()) {
-        const int32_t rank = queue.top();
-        queue.pop();
+    for (int32_t rank = first; rank < n; ++rank) {
+        if (!queued[rank]) continue;
         const int32_t v = mesh.internal_vertex(rank);
         count_again(v);
         const bool used = mesh.star_begin(v) != mesh.star_end(v);
@@ -89,10 +86,7 @@ VertexColouring recolour_vertices(const TetMesh& mesh, const VertexColouring& be
         for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
             for (const int32_t u : mesh.tets[*t]) {
                 count_again(u);
-                if (!queued[u] && mesh.caller_vertex(u) > rank) {
-                    queued[u] = 1;
-                    queue.push(mesh.caller_vertex(u));
-                }
+                if (mesh.caller_vertex(u) > rank) queued[mesh.caller_vertex(u)] = 1;
             }
     }
     out.count = colour.empty() ? 0 : 1 + *std::max_element(colour.begin(), colour.end());
