@@ -74,8 +74,13 @@ VertexColouring recolour_vertices(const TetMesh& mesh, const VertexColouring& be
         first = std::min(first, mesh.caller_vertex(v));
     }
     std::vector<int32_t> taken_by(static_cast<size_t>(before.count), -1);
+    int32_t coloured = 0;
     for (int32_t rank = first; rank < n; ++rank) {
         if (!queued[rank]) continue;
+        // On a structured mesh a change can shift the colours of most
+        // vertices after it; past an eighth of them, a full colouring
+        // (the same result) is cheaper than going on.
+        if (++coloured > n / 8) return colour_vertices(mesh);
         const int32_t v = mesh.internal_vertex(rank);
         count_again(v);
         const bool used = mesh.star_begin(v) != mesh.star_end(v);

@@ -35,7 +35,7 @@ VertexColouring colour_vertices(const TetMesh& mesh);
 // earlier in the caller's order, so only the changed vertices, and the
 // later neighbours of any vertex whose colour changed, are coloured again,
 // in that order: the result is colour_vertices(mesh), bit for bit,
-// without a pass over every star.
+// without a pass over every star (or with one, where that is cheaper).
 VertexColouring recolour_vertices(const TetMesh& mesh, const VertexColouring& before,
                                   const std::vector<int32_t>& changed);
 
