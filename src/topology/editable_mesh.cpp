@@ -39,7 +39,7 @@ std::array<int32_t, 2> other_two(const Tet& q, int32_t a, int32_t b) {
 EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
     : points_(mesh.points),
       cls_(classes.cls),
-      parents_(mesh.points.size()),
+      parents_(mesh.new_parents),
       tets_(mesh.tets),
       regions_(mesh.regions),
       sine_(mesh.tets.size(), kUnknownSine),
@@ -55,7 +55,6 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
     pins_.resize(points_.size());
     for (size_t v = 0; v < points_.size(); ++v) pins_[v] = mesh.vflags[v] & kPinned;
     for (const auto& [key, ref] : caller_features_) features_.insert(key);
-    for (int32_t v = input_vertices_; v < num_vertices(); ++v) parents_[v] = mesh.new_parents[v - input_vertices_];
     if (mesh.tet_origin.empty()) {
         origin_.resize(tets_.size());
         for (size_t t = 0; t < tets_.size(); ++t) origin_[t] = static_cast<int32_t>(t);
@@ -83,7 +82,7 @@ std::vector<int32_t> EditableMesh::write_to(TetMesh& mesh) const {
         flags[renumber[v]] = pins_[v];
         if (v < input_vertices_) continue;
         mesh.points.push_back(points_[v]);
-        mesh.new_parents.push_back(parents_[v]);
+        mesh.new_parents.push_back(parents_[v - input_vertices_]);
     }
     mesh.vflags = std::move(flags);
     mesh.tets.clear();
@@ -334,8 +333,8 @@ void EditableMesh::place(int32_t v, const Vec3& p) {
 
 void EditableMesh::set_parents(int32_t v, Parents parents) {
     journal_.push_back({Change::SetParents, v, {}, 0, Vec3::Zero(), 0, {}});
-    old_parents_.push_back(std::move(parents_[v]));
-    parents_[v] = std::move(parents);
+    old_parents_.push_back(std::move(parents_[v - input_vertices_]));
+    parents_[v - input_vertices_] = std::move(parents);
 }
 
 int32_t EditableMesh::add_tet(const Tet& q, int32_t region, int32_t origin) {
@@ -411,7 +410,7 @@ void EditableMesh::rollback(size_t mark) {
                 old_stamps_.pop_back();
                 break;
             case Change::SetParents:
-                parents_[e.index] = std::move(old_parents_.back());
+                parents_[e.index - input_vertices_] = std::move(old_parents_.back());
                 old_parents_.pop_back();
                 break;
             case Change::AddTet:

@@ -70,7 +70,7 @@ public:
     VertexClass vertex_class(int32_t v) const { return cls_[v]; }
     bool is_feature_edge(int32_t a, int32_t b) const { return features_.count(edge_key(a, b)) != 0; }
     const EdgeSet& feature_edges() const { return features_; }
-    const Parents& parents(int32_t v) const { return parents_[v]; }
+    const Parents& parents(int32_t v) const { return v < input_vertices_ ? no_parents_ : parents_[v - input_vertices_]; }
     TetPoints tet_points(int32_t t) const;
     // The smallest dihedral sine of live tet t (min_dihedral_sine), kept
     // until one of its vertices moves: the flip and insertion passes ask
@@ -119,7 +119,8 @@ public:
     // ---- changes (all logged)
     int32_t add_vertex(const Vec3& p, VertexClass cls, Parents parents);
     void move_vertex(int32_t v, const Vec3& p);
-    // A made vertex's parents (input vertices are their own parent).
+    // A made vertex's parents (input vertices are their own parent and
+    // have none).
     void set_parents(int32_t v, Parents parents);
     int32_t add_tet(const Tet& t, int32_t region, int32_t origin);
     void remove_tet(int32_t t);
@@ -177,7 +178,8 @@ private:
     std::vector<Vec3> points_;
     std::vector<VertexClass> cls_;
     std::vector<uint8_t> pins_;  // the caller's kPinned bits
-    std::vector<Parents> parents_;
+    std::vector<Parents> parents_;  // of the made vertices (input_vertices_ on)
+    Parents no_parents_;            // an input vertex's
     std::vector<Tet> tets_;  // removed: {-1, -1, -1, -1}
     std::vector<int32_t> regions_, origin_;
     mutable std::vector<double> sine_;  // tet_sine, NaN: not known
