@@ -247,7 +247,7 @@ RelocationTarget weighted_relocation(ElementWeights weights, const QuasiNewtonSe
     return [weights, qn](const EditableMesh& mesh, int32_t v, Vec3& target) {
         if (mesh.vertex_class(v) != VertexClass::Interior) return false;
         const auto is_free = [&mesh](int32_t u) { return mesh.vertex_class(u) == VertexClass::Interior; };
-        const std::vector<int32_t>& tets = mesh.tets_of(v);
+        const TetList tets = mesh.tets_of(v);
         WeightedStar star;
         gather_weighted_star(mesh, tets.data(), tets.data() + tets.size(), v, is_free, weights, star);
         const QuasiNewtonResult r = minimize_quasi_newton(star, mesh.point(v), qn);

@@ -44,7 +44,6 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
       regions_(mesh.regions),
       sine_(mesh.tets.size(), kUnknownSine),
       stamp_(mesh.points.size(), 0),
-      vtets_(mesh.points.size()),
       markers_(mesh.face_markers),
       caller_features_(mesh.feature_edges),
       features_(classes.feature_edges),
@@ -61,10 +60,18 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
     } else {
         origin_ = mesh.tet_origin;
     }
-    for (size_t v = 0; v < points_.size(); ++v)
-        vtets_[v].reserve(static_cast<size_t>(mesh.star_end(static_cast<int32_t>(v)) - mesh.star_begin(static_cast<int32_t>(v))));
+    // Room for a few more tets at each vertex: flips and splits add some.
+    constexpr int32_t kSpare = 4;
+    vt_.resize(points_.size());
+    size_t at = 0;
+    for (size_t v = 0; v < points_.size(); ++v) {
+        const int32_t n = static_cast<int32_t>(mesh.star_end(static_cast<int32_t>(v)) - mesh.star_begin(static_cast<int32_t>(v)));
+        vt_[v] = {at, 0, n + kSpare};
+        at += static_cast<size_t>(n + kSpare);
+    }
+    vt_pool_.resize(at);
     for (int32_t t = 0; t < tet_capacity(); ++t)
-        for (int32_t v : tets_[t]) vtets_[v].push_back(t);  // ascending
+        for (int32_t v : tets_[t]) vt_pool_[vt_[v].at + static_cast<size_t>(vt_[v].size++)] = t;  // ascending
 }
 
 std::vector<int32_t> EditableMesh::write_to(TetMesh& mesh) const {
@@ -73,7 +80,7 @@ std::vector<int32_t> EditableMesh::write_to(TetMesh& mesh) const {
     std::vector<int32_t> renumber(points_.size(), -1);
     int32_t next = input_vertices_;
     for (int32_t v = 0; v < num_vertices(); ++v)
-        renumber[v] = v < input_vertices_ ? v : (vtets_[v].empty() ? -1 : next++);
+        renumber[v] = v < input_vertices_ ? v : (vt_[v].size == 0 ? -1 : next++);
     mesh.points.assign(points_.begin(), points_.begin() + input_vertices_);
     mesh.new_parents.clear();
     std::vector<uint8_t> flags(static_cast<size_t>(next), 0);
@@ -179,7 +186,7 @@ void EditableMesh::bound_sines(const std::vector<TetShape>& shapes) {
 
 std::vector<int32_t> EditableMesh::tets_holding(std::initializer_list<int32_t> vs) const {
     std::vector<int32_t> out;
-    for (int32_t t : vtets_[*vs.begin()]) {
+    for (int32_t t : tets_of(*vs.begin())) {
         const Tet& q = tets_[t];
         if (std::all_of(vs.begin(), vs.end(), [&q](int32_t v) { return holds(q, v); }))
             out.push_back(t);
@@ -189,7 +196,7 @@ std::vector<int32_t> EditableMesh::tets_holding(std::initializer_list<int32_t> v
 
 int EditableMesh::face_tets(const FaceKey& f, int32_t out[2]) const {
     int n = 0;
-    for (int32_t t : vtets_[f.v[0]]) {
+    for (int32_t t : tets_of(f.v[0])) {
         const Tet& q = tets_[t];
         if (holds(q, f.v[1]) && holds(q, f.v[2]) && n < 2) out[n++] = t;
     }
@@ -210,7 +217,7 @@ int32_t EditableMesh::marker(const FaceKey& f) const {
 }
 
 bool EditableMesh::is_surface_edge(int32_t a, int32_t b) const {
-    for (int32_t t : vtets_[a]) {
+    for (int32_t t : tets_of(a)) {
         const Tet& q = tets_[t];
         if (!holds(q, b)) continue;
         for (int32_t c : q)
@@ -220,7 +227,7 @@ bool EditableMesh::is_surface_edge(int32_t a, int32_t b) const {
 }
 
 bool EditableMesh::has_edge(int32_t a, int32_t b) const {
-    for (int32_t t : vtets_[a])
+    for (int32_t t : tets_of(a))
         if (holds(tets_[t], b)) return true;
     return false;
 }
@@ -232,7 +239,7 @@ bool EditableMesh::edge_ring(int32_t a, int32_t b, EdgeRing& out) const {
     // Each tet (a, b, c, d) in positive order links c -> d.
     auto& links = ring_links_;  // c, d, tet
     links.clear();
-    for (int32_t t : vtets_[a]) {
+    for (int32_t t : tets_of(a)) {
         const Tet& q = tets_[t];
         if (!holds(q, b)) continue;
         const std::array<int32_t, 2> cd = other_two(q, a, b);
@@ -274,7 +281,7 @@ bool EditableMesh::edge_ring(int32_t a, int32_t b, EdgeRing& out) const {
 
 void EditableMesh::neighbors(int32_t v, std::vector<int32_t>& out) const {
     out.clear();
-    for (int32_t t : vtets_[v])
+    for (int32_t t : tets_of(v))
         for (int32_t w : tets_[t])
             if (w != v) out.push_back(w);
     std::sort(out.begin(), out.end());
@@ -285,8 +292,21 @@ void EditableMesh::neighbors(int32_t v, std::vector<int32_t>& out) const {
 
 void EditableMesh::attach(int32_t t, const std::array<int32_t, 4>* at) {
     for (int i = 0; i < 4; ++i) {
-        auto& list = vtets_[tets_[t][i]];
-        list.insert(at ? list.begin() + (*at)[i] : list.end(), t);
+        TetSlot& slot = vt_[tets_[t][i]];
+        if (slot.size == slot.room) {
+            const size_t moved = vt_pool_.size();
+            const int32_t room = 2 * slot.room + 4;
+            vt_pool_.resize(moved + static_cast<size_t>(room));
+            std::copy_n(vt_pool_.begin() + static_cast<std::ptrdiff_t>(slot.at), slot.size,
+                        vt_pool_.begin() + static_cast<std::ptrdiff_t>(moved));
+            slot.at = moved;
+            slot.room = room;
+        }
+        int32_t* list = vt_pool_.data() + slot.at;
+        const int32_t k = at ? (*at)[i] : slot.size;
+        std::copy_backward(list + k, list + slot.size, list + slot.size + 1);
+        list[k] = t;
+        ++slot.size;
         set_stamp(tets_[t][i], ++clock_);
     }
 }
@@ -294,10 +314,12 @@ void EditableMesh::attach(int32_t t, const std::array<int32_t, 4>* at) {
 std::array<int32_t, 4> EditableMesh::detach(int32_t t) {
     std::array<int32_t, 4> at;
     for (int i = 0; i < 4; ++i) {
-        auto& list = vtets_[tets_[t][i]];
-        const auto it = std::find(list.begin(), list.end(), t);
-        at[i] = static_cast<int32_t>(it - list.begin());
-        list.erase(it);
+        TetSlot& slot = vt_[tets_[t][i]];
+        int32_t* list = vt_pool_.data() + slot.at;
+        const int32_t k = static_cast<int32_t>(std::find(list, list + slot.size, t) - list);
+        at[i] = k;
+        std::copy(list + k + 1, list + slot.size, list + k);
+        --slot.size;
         set_stamp(tets_[t][i], ++clock_);
     }
     return at;
@@ -309,7 +331,7 @@ int32_t EditableMesh::add_vertex(const Vec3& p, VertexClass cls, Parents parents
     cls_.push_back(cls);
     pins_.push_back(0);
     parents_.push_back(std::move(parents));
-    vtets_.emplace_back();
+    vt_.push_back({vt_pool_.size(), 0, 0});
     stamp_.push_back(++clock_);
     ++stamped_;
     journal_.push_back({Change::AddVertex, v, {}, 0, Vec3::Zero(), 0, {}});
@@ -325,7 +347,7 @@ void EditableMesh::move_vertex(int32_t v, const Vec3& p) {
 void EditableMesh::place(int32_t v, const Vec3& p) {
     points_[v] = p;
     set_stamp(v, ++clock_);
-    for (int32_t t : vtets_[v]) {
+    for (int32_t t : tets_of(v)) {
         sine_[t] = kUnknownSine;
         if (!sine_floor_.empty()) sine_floor_[t] = kNoSineFloor;
     }
@@ -400,7 +422,7 @@ void EditableMesh::rollback(size_t mark) {
                 cls_.pop_back();
                 pins_.pop_back();
                 parents_.pop_back();
-                vtets_.pop_back();
+                vt_.pop_back();
                 set_stamp(static_cast<int32_t>(stamp_.size()) - 1, 0);
                 stamp_.pop_back();
                 break;

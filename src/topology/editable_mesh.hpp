@@ -29,6 +29,21 @@ struct EdgeRing {
     bool closed = false;
 };
 
+// A vertex's tets (EditableMesh::tets_of): good until the mesh's
+// connectivity changes.
+struct TetList {
+    const int32_t* first;
+    const int32_t* last;
+    const int32_t* begin() const { return first; }
+    const int32_t* end() const { return last; }
+    const int32_t* data() const { return first; }
+    size_t size() const { return static_cast<size_t>(last - first); }
+    bool empty() const { return first == last; }
+    int32_t front() const { return *first; }
+    int32_t operator[](size_t i) const { return first[i]; }
+    operator std::vector<int32_t>() const { return {first, last}; }
+};
+
 class EditableMesh {
 public:
     // Copies the mesh; `classes` gives each vertex's class (new vertices
@@ -66,7 +81,11 @@ public:
     int32_t region(int32_t t) const { return regions_[t]; }
     int32_t origin(int32_t t) const { return origin_[t]; }
     const Vec3& point(int32_t v) const { return points_[v]; }
-    const std::vector<int32_t>& tets_of(int32_t v) const { return vtets_[v]; }
+    // In ascending order, but for a rollback, which puts tets back where they were.
+    TetList tets_of(int32_t v) const {
+        const int32_t* at = vt_pool_.data() + vt_[v].at;
+        return {at, at + vt_[v].size};
+    }
     VertexClass vertex_class(int32_t v) const { return cls_[v]; }
     bool is_feature_edge(int32_t a, int32_t b) const { return features_.count(edge_key(a, b)) != 0; }
     const EdgeSet& feature_edges() const { return features_; }
@@ -188,7 +207,16 @@ private:
     int64_t stamped_ = 0;               // vertices whose stamp is not 0
     uint64_t clock_ = 0;
     mutable std::vector<std::array<int32_t, 3>> ring_links_;  // edge_ring's scratch
-    std::vector<std::vector<int32_t>> vtets_;
+    // Every vertex's tets in one array: vertex v's are vt_pool_[at, at +
+    // size), with room up to at + room; a list that outgrows its room moves
+    // to the end with twice as much.  One allocation for the whole mesh,
+    // not one per vertex.
+    struct TetSlot {
+        size_t at;
+        int32_t size, room;
+    };
+    std::vector<int32_t> vt_pool_;
+    std::vector<TetSlot> vt_;
     std::unordered_map<FaceKey, int32_t, FaceKeyHash> markers_;
     EdgeRefs caller_features_;  // the caller's feature edges and refs, kept in the output
     EdgeSet features_;         // every feature edge the classes came from, plus the caller's

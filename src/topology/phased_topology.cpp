@@ -335,7 +335,7 @@ int32_t PhasedTopology::untangle_by_moves() {
             const Shape* shape = v < geometry_.num_vertices() ? geometry_.shape_of(v) : nullptr;
             const bool on_shape = (cls == VertexClass::Surface || cls == VertexClass::FeatureLine) && shape;
             if (cls != VertexClass::Interior && !on_shape) continue;
-            const std::vector<int32_t>& star = mesh_.tets_of(v);  // moves leave it as it is
+            const TetList star = mesh_.tets_of(v);  // moves leave it as it is
             const auto before = badness(mesh_, star);
             if (before.first == 0) continue;
             mesh_.neighbors(v, around);
