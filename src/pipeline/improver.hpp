@@ -47,7 +47,8 @@ public:
 
     // The classes are computed when first needed and kept until the mesh's
     // regions, markers, fixed vertices or feature edges change (the caller
-    // says so here) or the mode or a feature parameter does.
+    // says so here), the mode or a feature parameter does, or a step's
+    // connectivity change alters a region surface.
     void mesh_data_changed() {
         classes_valid_ = false;
         geometry_valid_ = false;
