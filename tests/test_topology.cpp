@@ -1395,7 +1395,7 @@ OpKind random_kind(std::mt19937& rng, int32_t tets, int32_t start) {
 // sums and rings made from them).
 std::vector<std::vector<int32_t>> tet_lists(const EditableMesh& em) {
     std::vector<std::vector<int32_t>> out;
-    for (int32_t v = 0; v < em.num_vertices(); ++v) out.push_back(em.tets_of(v));
+    for (int32_t v = 0; v < em.num_vertices(); ++v) out.emplace_back(em.tets_of(v));
     return out;
 }
 

@@ -61,8 +61,7 @@ std::vector<char> fin_vertices(const TetMesh& mesh) {
     const std::vector<uint8_t> marked = mesh.marked_face_vertices();
     for (int32_t t = 0; t < mesh.num_tets(); ++t)
         for (int i = 0; i < 4; ++i) {
-            const int32_t s = mesh.neighbors[t][i];
-            if (s < 0 || mesh.regions[s] != mesh.regions[t]) continue;
+            if (mesh.is_region_boundary_face(t, i)) continue;
             const Tet& q = mesh.tets[t];
             const int32_t a = q[kFaceVertex[i][0]], b = q[kFaceVertex[i][1]], c = q[kFaceVertex[i][2]];
             if (mesh.is_marked_face(t, i, marked)) fin[a] = fin[b] = fin[c] = 1;

@@ -22,8 +22,7 @@ std::vector<OrientedFace> region_faces(const TetMesh& mesh, int32_t region) {
     for (int32_t t = 0; t < mesh.num_tets(); ++t) {
         if (mesh.regions[t] != region) continue;
         for (int i = 0; i < 4; ++i) {
-            const int32_t s = mesh.neighbors[t][i];
-            if (s < 0 || mesh.regions[s] != region)
+            if (mesh.is_region_boundary_face(t, i))
                 keyed.push_back({4 * static_cast<int64_t>(mesh.caller_tet(t)) + i, {mesh.outward_face(t, i)}});
         }
     }

@@ -33,8 +33,8 @@ namespace {
 
 // No face of tet t is on a region surface.
 bool inner_tet(const TetMesh& mesh, int32_t t) {
-    for (const int32_t s : mesh.neighbors[t])
-        if (s < 0 || mesh.regions[s] != mesh.regions[t]) return false;
+    for (int i = 0; i < 4; ++i)
+        if (mesh.is_region_boundary_face(t, i)) return false;
     return true;
 }
 

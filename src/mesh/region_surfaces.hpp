@@ -29,7 +29,8 @@ public:
     // in their order, the new ones after them).
     static bool kept_by(const TetMesh& before, const TetMesh& after, const std::vector<int32_t>& written);
     // The vertices of a mesh grown to `nv` vertices by a change that kept
-    // every surface face (the new vertices lie on none).
+    // every surface face (the new vertices lie on none).  The mesh before
+    // the change reads the surfaces as before: it has no vertex past its own.
     void add_vertices(int32_t nv) {
         const int32_t end = offset_.back();
         offset_.resize(static_cast<size_t>(nv) + 1, end);

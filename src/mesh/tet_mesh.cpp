@@ -143,8 +143,7 @@ void TetMesh::build_neighbors(int base, int threads) {
 }
 
 bool TetMesh::is_surface_face(int32_t t, int i) const {
-    const int32_t s = neighbors[t][i];
-    return s < 0 || regions[s] != regions[t] || is_marked_face(t, i);
+    return is_region_boundary_face(t, i) || is_marked_face(t, i);
 }
 
 bool TetMesh::is_marked_face(int32_t t, int i) const {
@@ -168,8 +167,7 @@ bool TetMesh::is_marked_face(int32_t t, int i, const std::vector<uint8_t>& marke
 }
 
 bool TetMesh::is_surface_face(int32_t t, int i, const std::vector<uint8_t>& marked) const {
-    const int32_t s = neighbors[t][i];
-    return s < 0 || regions[s] != regions[t] || is_marked_face(t, i, marked);
+    return is_region_boundary_face(t, i) || is_marked_face(t, i, marked);
 }
 
 // An interior surface face is listed once, from the side it points out of:

@@ -195,6 +195,12 @@ public:
     // Axis-aligned bounding-box diagonal of the used vertices.
     double bbox_diagonal() const;
 
+    // Face i of tet t is on the domain boundary or between regions: on the
+    // surface of t's region (RegionSurfaces).
+    bool is_region_boundary_face(int32_t t, int i) const {
+        const int32_t s = neighbors[t][i];
+        return s < 0 || regions[s] != regions[t];
+    }
     // Face i of tet t is on the domain boundary, between regions, or marked.
     bool is_surface_face(int32_t t, int i) const;
     // Face i of tet t carries a marker.

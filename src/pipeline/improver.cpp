@@ -305,13 +305,8 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     changed.build_topology(editable.written_neighbors(mesh.neighbors, written));
     const bool same_indices = kept_vertex_indices(renumber, mesh.num_vertices());
     const bool surfaces_kept = same_indices && RegionSurfaces::kept_by(mesh, changed, written);
-    RegionSurfaces rebuilt;
-    if (surfaces_kept) {
-        rebuilt = surfaces;
-        rebuilt.add_vertices(changed.num_vertices());
-    } else {
-        rebuilt.build(changed, 0, BoundarySurface::Strictness::Tolerant);
-    }
+    RegionSurfaces rebuilt;  // only when the surfaces changed
+    if (!surfaces_kept) rebuilt.build(changed, 0, BoundarySurface::Strictness::Tolerant);
     ShapeCache shapes = editable.written_shapes(written, shapes_, changed);
     changed.take_caller_data(mesh);
     VertexClasses now;
@@ -323,12 +318,14 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
         for (int32_t v = 0; v < editable.num_vertices(); ++v)
             if (editable.stamp(v) != 0 && renumber[v] >= 0) stamped.push_back(renumber[v]);
         if (same_indices) changed.carry_colouring(mesh, stamped);
+        // Kept surfaces gain the new vertices, which lie on none (for the
+        // mesh as it was, entries of vertices it does not have).
+        if (surfaces_kept) surfaces.add_vertices(changed.num_vertices());
         if (carry && surfaces_kept) {
             // The classes come from the surfaces, which are as they were;
-            // the new vertices are inside.
-            now = classes_;
-            now.cls.resize(changed.points.size(), VertexClass::Interior);
-            now.line.resize(changed.points.size(), {-1, -1});
+            // the new vertices are inside (room made here, filled below).
+            classes_.cls.reserve(changed.points.size());
+            classes_.line.reserve(changed.points.size());
             touched = stamped;
         } else if (carry) {
             // The classes the next sweep would make (the points stay until then).
@@ -346,13 +343,18 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     }
     // Nothing below throws.
     mesh = std::move(changed);
-    surfaces = std::move(rebuilt);
+    if (!surfaces_kept) surfaces = std::move(rebuilt);
     shapes_ = std::move(shapes);
     geometry_valid_ = false;
     if (carry) {
+        if (surfaces_kept) {
+            classes_.cls.resize(mesh.points.size(), VertexClass::Interior);  // within the room made
+            classes_.line.resize(mesh.points.size(), {-1, -1});
+        } else {
+            classes_ = std::move(now);
+        }
         // The vertices touched count as moved: the records of the failed
         // attempts around them (kept by vertex, or carried by tet) go too.
-        classes_ = std::move(now);
         settled_.carry_over(mesh.points.size(), touched);
         failed_.tets.carry_over(written, mesh.tets.size());
     } else {

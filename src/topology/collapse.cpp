@@ -62,7 +62,7 @@ bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double 
 bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const TopologyRules& rules, double must_exceed) {
     const VertexClass cv = mesh.vertex_class(v);
     if (v == w || cv == VertexClass::Corner || cv == VertexClass::Fixed || cv == VertexClass::Unused) return false;
-    std::vector<int32_t> star = mesh.tets_of(v);
+    std::vector<int32_t> star(mesh.tets_of(v));
     if (std::none_of(star.begin(), star.end(), [&](int32_t t) { return holds(mesh.tet(t), w); })) return false;
     const bool v_on_surface = cv != VertexClass::Interior;
     if (v_on_surface && (!rules.surface_may_change || !mesh.is_surface_edge(v, w))) return false;
@@ -175,7 +175,7 @@ int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRu
     Vec3 mid = 0.5 * (mesh.point(a) + old_b);
     if (rules.snap_to_shape && rank(b) > 0) rules.snap_to_shape(mesh, b, mid);
     const double length = (mesh.point(a) - old_b).norm();
-    const std::vector<int32_t> star = mesh.tets_of(b);
+    const std::vector<int32_t> star(mesh.tets_of(b));
     const TetLimits limits = limits_for(mesh, star, rules, must_exceed);
     mesh.move_vertex(b, mid);
     bool ok = true;

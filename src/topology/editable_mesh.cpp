@@ -69,6 +69,9 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
         vt_[v] = {at, 0, n + kSpare};
         at += static_cast<size_t>(n + kSpare);
     }
+    // A little room for the lists that move: the first would otherwise
+    // reallocate the whole pool at twice its size.
+    vt_pool_.reserve(at + at / 32);
     vt_pool_.resize(at);
     for (int32_t t = 0; t < tet_capacity(); ++t)
         for (int32_t v : tets_[t]) vt_pool_[vt_[v].at + static_cast<size_t>(vt_[v].size++)] = t;  // ascending

@@ -41,7 +41,7 @@ struct TetList {
     bool empty() const { return first == last; }
     int32_t front() const { return *first; }
     int32_t operator[](size_t i) const { return first[i]; }
-    operator std::vector<int32_t>() const { return {first, last}; }
+    explicit operator std::vector<int32_t>() const { return {first, last}; }
 };
 
 class EditableMesh {

@@ -149,7 +149,7 @@ int32_t PhasedTopology::split_onto_shape(int32_t a, int32_t b, bool judged_after
     }
     geometry_.set(m, cls, entity);
     if (cls != VertexClass::Interior && entity < 0) geometry_.set(m, cls, geometry_.resolve(mesh_, m));
-    const std::vector<int32_t> star = mesh_.tets_of(m);
+    const std::vector<int32_t> star(mesh_.tets_of(m));
     const auto positive = [&] {
         for (int32_t t : star) {
             const TetPoints p = mesh_.tet_points(t);
@@ -202,8 +202,10 @@ int32_t PhasedTopology::collapse_by_rules(int32_t a, int32_t b) {
 namespace {
 
 // How bad a set of tets is: how many are not positive, then the worst
-// stretch (negated, so that smaller is better in both).
-std::pair<int32_t, double> badness(const EditableMesh& mesh, const std::vector<int32_t>& tets) {
+// stretch (negated, so that smaller is better in both).  Tets: a vector
+// or a vertex's TetList.
+template <class Tets>
+std::pair<int32_t, double> badness(const EditableMesh& mesh, const Tets& tets) {
     int32_t count = 0;
     double worst = std::numeric_limits<double>::infinity();
     for (int32_t t : tets) {

@@ -25,7 +25,7 @@ void relocate(EditableMesh& mesh, int32_t v, const TopologySettings& s) {
     Vec3 target;
     if (!(s.relocation_target ? s.relocation_target(mesh, v, target) : odt_target(mesh, v, target))) return;
     if (!target.allFinite()) return;
-    const std::vector<int32_t> star = mesh.tets_of(v);
+    const std::vector<int32_t> star(mesh.tets_of(v));
     const Vec3 start = mesh.point(v);
     const TetLimits limits = limits_for(mesh, star, s.rules, worst_sine(mesh, star));
     for (double f = 1.0; f > 0.05; f *= 0.5) {
