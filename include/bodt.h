@@ -463,7 +463,8 @@ enum bodt_param {
     BODT_PARAM_KEEP_SURFACE = 9,
     /* double, degrees, default 15: a tet with a dihedral angle below this or
      * above 180 minus this is bad: BODT_OP_INSERT breaks bad spades, caps
-     * and slivers, BODT_OP_COLLAPSE bad tets with a short edge. */
+     * and slivers, and refines the other bad tets with an interior vertex
+     * at their circumcentre, BODT_OP_COLLAPSE bad tets with a short edge. */
     BODT_PARAM_BAD_ANGLE = 10,
     /* int 0/1, default 0: 1 adds paper 002's conditions (sec. 3.4.4) to
      * every flip: some tet it replaces is not Delaunay and every tet it
@@ -537,7 +538,9 @@ enum bodt_op {
                              vertices all stay put, as in the paper        */
     BODT_OP_INSERT = 4,   /* split spades, caps and slivers (paper 000
                              sec. 2.3), conforming: every tet on the split
-                             edge or face is split                          */
+                             edge or face is split; else, in a bad tet with
+                             an interior vertex, insert its circumcentre
+                             (Bowyer-Watson, within its region)             */
     BODT_OP_COLLAPSE = 8  /* collapse the short edge of a bad tet (paper 002
                              sec. 3.5.1 position rules)                     */
 };

@@ -1746,6 +1746,92 @@ void test_insertion(void**) {
     }
 }
 
+// Inserting a point into its cavity (Bowyer-Watson within a region):
+// plans that are made give a valid mesh with the point joined to the
+// cavity's boundary; a point outside the region, a cavity that misses the
+// seed and one across an interface are refused; and the pass inserts the
+// circumcentre of a short-edge tet, which no split breaks.
+void test_cavity_insertion(void**) {
+    const char* what = "cavity insertion";
+    test_mesh tm{};
+    assert_int_equal(tm_make_cubes(&tm, 4, 1.0, nullptr, nullptr, 0.2, 7), 0);
+    Input in = from_test_mesh(tm, nullptr);
+    tm_free(&tm);
+    // two regions, split at x = 0.5
+    for (const Tet& q : in.tets) {
+        double x = 0.0;
+        for (int32_t v : q) x += 0.25 * in.points[v].x();
+        in.regions.push_back(x < 0.5 ? 1 : 2);
+    }
+    mark_box_sides(in, 1.0);
+    const Case c = make_case(in);
+    const Reference ref = reference_of(c);
+    const TopologyRules rules = loose_rules();
+    int made = 0, across_interface = 0;
+    for (int32_t t = 0; t < c.mesh.num_tets(); ++t) {
+        EditableMesh em(c.mesh, c.classes);
+        const Vec3 p = bodt::circumcenter(em.tet_points(t));
+        const bodt::CavityPlan plan = bodt::plan_cavity(em, t, p, rules, 0.0);
+        if (!plan.valid()) continue;
+        CHECK(std::count(plan.cavity.begin(), plan.cavity.end(), t) == 1, "tet %d: the cavity misses its seed", t);
+        for (int32_t k : plan.cavity) {
+            CHECK(em.region(k) == em.region(plan.cavity.front()), "tet %d: the cavity crosses the interface", t);
+            CHECK(bodt::in_circumsphere(em.tet_points(k), p), "tet %d: cavity tet %d does not hold the point", t, k);
+        }
+        const int32_t v = bodt::insert_planned(em, plan);
+        CHECK(v == c.mesh.num_vertices() && em.vertex_class(v) == bodt::VertexClass::Interior, "tet %d: new vertex %d", t, v);
+        CHECK(em.tets_of(v).size() == plan.fresh.size(), "tet %d: %zu tets at the new vertex, %zu planned", t,
+              em.tets_of(v).size(), plan.fresh.size());
+        check_valid(em, ref, what);
+        ++made;
+        // a plan on the interface's other side: the same point from a seed
+        // in the other region never takes tets of the first
+        for (int32_t k = 0; k < c.mesh.num_tets(); ++k)
+            if (c.mesh.regions[k] != c.mesh.regions[t]) {
+                EditableMesh other(c.mesh, c.classes);
+                across_interface += bodt::plan_cavity(other, k, p, rules, 0.0).valid();
+                break;
+            }
+    }
+    print_message("cavity insertion: %d of %d circumcentres inserted\n", made, c.mesh.num_tets());
+    CHECK(made > c.mesh.num_tets() / 4, "only %d circumcentres inserted", made);
+    CHECK(across_interface == 0, "%d plans from the other region", across_interface);
+    EditableMesh em(c.mesh, c.classes);
+    // outside the box: the walk leaves the region
+    assert_false(bodt::plan_cavity(em, 0, Vec3(1.5, 0.5, 0.5), rules, 0.0).valid());
+    // a point far from the seed: its cavity does not hold the seed
+    const Vec3 corner_side = bodt::circumcenter(em.tet_points(0));
+    int32_t far = -1;
+    for (int32_t t = 0; t < c.mesh.num_tets() && far < 0; ++t)
+        if (c.mesh.regions[t] == c.mesh.regions[0] && (bodt::circumcenter(em.tet_points(t)) - corner_side).norm() > 0.4) far = t;
+    assert_true(far >= 0);
+    assert_false(bodt::plan_cavity(em, far, corner_side, rules, 0.0).valid());
+
+    // The pass: an interior vertex pushed next to another makes tets with
+    // a short edge (no spade, cap or sliver); their circumcentres go in.
+    Case pushed = kuhn_box(4, 0.0, 1, true);
+    const int32_t a = vertex_at(pushed.mesh, Vec3(0.5, 0.5, 0.5)), b = vertex_at(pushed.mesh, Vec3(0.5, 0.5, 0.75));
+    pushed.mesh.points[a] = pushed.mesh.points[b] + Vec3(0.02, 0.01, -0.03);
+    const Reference pushed_ref = reference_of(pushed);
+    EditableMesh pe(pushed.mesh, pushed.classes);
+    bodt::TopologySettings settings;
+    settings.rules = loose_rules();
+    settings.flip = false;
+    settings.insert = true;
+    const double before = worst_angle(pushed.mesh);
+    int short_edges = 0;
+    for (int32_t t = 0; t < pushed.mesh.num_tets(); ++t)
+        short_edges += bodt::classify_bad_tet(pushed.mesh.tet_points(t), 15.0).kind == bodt::BadTetKind::ShortEdge;
+    const bodt::TopologyCounts counts = bodt::improve_topology(pe, settings);
+    const TetMesh out = check_valid(pe, pushed_ref, "refinement pass");
+    const double after = worst_angle(out);
+    print_message("refinement pass: %d short-edge tets, %d inserted, worst angle %.2f -> %.2f degrees\n", short_edges,
+                  counts.inserted, before, after);
+    CHECK(short_edges > 0, "%d short-edge tets", short_edges);
+    CHECK(counts.inserted > 0, "%d inserted", counts.inserted);
+    CHECK(after > before, "worst angle %g -> %g", before, after);
+}
+
 void test_flip_pass(void**) {
     const char* what = "flip pass";
     test_mesh tm{};
@@ -2370,6 +2456,7 @@ int main(void) {
         cmocka_unit_test(test_flip_pass_plain),
         cmocka_unit_test(test_sine_bounds),
         cmocka_unit_test(test_failed_flips),
+        cmocka_unit_test(test_cavity_insertion),
         cmocka_unit_test(test_stuck_tets),
         cmocka_unit_test(test_carried_over),
         cmocka_unit_test(test_carried_colouring_and_surfaces),

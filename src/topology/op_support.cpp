@@ -120,6 +120,7 @@ Parents blend_parents(const EditableMesh& mesh, std::initializer_list<int32_t> v
     auto w = ws.begin();
     for (int32_t v : vs) {
         const double weight = *w++;
+        if (!(weight > 0.0)) continue;  // a vertex the point does not depend on
         if (mesh.parents(v).empty()) {
             out.push_back({v, weight});  // an input vertex
         } else {

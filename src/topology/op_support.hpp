@@ -60,7 +60,7 @@ std::vector<int32_t> origins_of(const EditableMesh& mesh, const std::vector<int3
                                 const std::vector<Tet>& fresh);
 
 // Parents of a point interpolated from mesh vertices vs[i] with weights
-// ws[i], expressed in input vertices.
+// ws[i] (those of weight 0 left out), expressed in input vertices.
 Parents blend_parents(const EditableMesh& mesh, std::initializer_list<int32_t> vs, std::initializer_list<double> ws);
 
 // x lies in the plane through p with normal n (not unit), to round-off of

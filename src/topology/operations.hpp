@@ -66,6 +66,24 @@ int32_t split_edge(EditableMesh& mesh, int32_t a, int32_t b, Vec3 p, const Topol
 // face p is first projected onto its plane.  Returns the new vertex or -1.
 int32_t split_face(EditableMesh& mesh, const FaceKey& face, Vec3 p, const TopologyRules& rules, double must_exceed);
 
+// Point insertion (Bowyer-Watson), planned then made: a new interior
+// vertex at p, in place of the tets whose circumsphere holds p, grown from
+// the tet holding p (walked to from `seed`) without crossing a surface,
+// interface or marked face.  No plan unless the cavity holds `seed`, p
+// sees every face of its boundary (each new tet acceptable under `rules`
+// and `must_exceed`), and no vertex would be left inside.
+struct CavityPlan {
+    std::vector<int32_t> cavity;     // the tets replaced; the first holds p
+    std::vector<Tet> fresh;          // the new tets, -1 for the new vertex
+    std::array<double, 4> lambda{};  // p's barycentric coordinates in cavity[0]
+    Vec3 point = Vec3::Zero();
+    bool valid() const { return !fresh.empty(); }
+};
+CavityPlan plan_cavity(const EditableMesh& mesh, int32_t seed, const Vec3& p, const TopologyRules& rules,
+                       double must_exceed);
+// Makes a valid plan of the mesh as it is; returns the new vertex (-1: no plan).
+int32_t insert_planned(EditableMesh& mesh, const CavityPlan& plan);
+
 // Half-edge collapse: v disappears into w.  Corners and fixed vertices are
 // never removed; a feature-line vertex goes only along its feature edge, a
 // surface vertex only along a surface edge, and only where its surface

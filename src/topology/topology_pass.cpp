@@ -120,6 +120,17 @@ std::vector<int32_t> insert_for(EditableMesh& mesh, int32_t t, const BadTet& bad
     return made;
 }
 
+// Refinement at the circumcentre is for tets with an interior vertex: one
+// whose four vertices all lie on the boundary is flat against it, its
+// circumcentre outside the region or far from the tet (the plan fails,
+// after a costly walk), and is left to the flips, which may change the
+// surface's triangulation.
+bool has_interior_vertex(const EditableMesh& mesh, int32_t t) {
+    for (int32_t v : mesh.tet(t))
+        if (mesh.vertex_class(v) == VertexClass::Interior) return true;
+    return false;
+}
+
 // Worst tets first, so that a fix is not spent on a tet a neighbour's fix
 // would have removed anyway.
 std::vector<int32_t> bad_tets_by_quality(const EditableMesh& mesh, double bad_sine) {
@@ -309,21 +320,10 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
     if (s.insert || s.collapse) {
         for (int32_t t : bad_tets_by_quality(mesh, bad_sine)) {
             if (!mesh.alive(t)) continue;
-            const BadTet bad = classify_bad_tet(mesh.tet_points(t), s.bad_angle_deg);
-            if (s.insert && (bad.kind == BadTetKind::Spade || bad.kind == BadTetKind::Cap || bad.kind == BadTetKind::Sliver)) {
-                if (failed.tets.stuck(mesh, t, StuckTets::kInsertion)) continue;
-                int32_t made = 0;
-                if (try_change(mesh, t, s, [&] {
-                        const std::vector<int32_t> v = insert_for(mesh, t, bad, loose);
-                        made = static_cast<int32_t>(v.size());
-                        return v;
-                    }))
-                    counts.inserted += made;
-                else
-                    failed.tets.failed(mesh, t, StuckTets::kInsertion);
-            } else if (s.collapse && bad.kind == BadTetKind::ShortEdge) {
+            const TetPoints p = mesh.tet_points(t);
+            const BadTet bad = classify_bad_tet(p, s.bad_angle_deg);
+            if (bad.kind == BadTetKind::ShortEdge && s.collapse) {
                 // The shortest edge, collapsed by the position rules.
-                const TetPoints p = mesh.tet_points(t);
                 int shortest = 0;
                 for (int e = 1; e < 6; ++e)
                     if ((p[kEdgeVertex[e][1]] - p[kEdgeVertex[e][0]]).squaredNorm() <
@@ -333,9 +333,35 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
                 if (try_change(mesh, t, s, [&] {
                         const int32_t kept = collapse_edge(mesh, q[kEdgeVertex[shortest][0]], q[kEdgeVertex[shortest][1]], loose, 0.0);
                         return kept >= 0 ? std::vector<int32_t>{kept} : std::vector<int32_t>{};
-                    }))
+                    })) {
                     ++counts.collapsed;
+                    continue;
+                }
             }
+            if (!s.insert || failed.tets.stuck(mesh, t, StuckTets::kInsertion)) continue;
+            int32_t made = 0;
+            const auto insert = [&](auto&& op) {
+                return try_change(mesh, t, s, [&] {
+                    const std::vector<int32_t> v = op();
+                    made = static_cast<int32_t>(v.size());
+                    return v;
+                });
+            };
+            const bool shaped = bad.kind == BadTetKind::Spade || bad.kind == BadTetKind::Cap || bad.kind == BadTetKind::Sliver;
+            // Else, or if that did not pass, the circumcentre (Delaunay
+            // refinement), planned first: most plans fail, and cheaply.
+            const auto refine = [&] {
+                const CavityPlan plan = plan_cavity(mesh, t, circumcenter(p), loose, 0.0);
+                return plan.valid() && insert([&] {
+                    const int32_t v = insert_planned(mesh, plan);
+                    return v >= 0 ? std::vector<int32_t>{v} : std::vector<int32_t>{};
+                });
+            };
+            if ((shaped && insert([&] { return insert_for(mesh, t, bad, loose); })) ||
+                (has_interior_vertex(mesh, t) && refine()))
+                counts.inserted += made;
+            else
+                failed.tets.failed(mesh, t, StuckTets::kInsertion);
         }
         if (s.flip && counts.inserted + counts.collapsed > 0)
             counts.flips += flip_pass(mesh, s.rules, s.flip_angle_deg, failed);

@@ -1,8 +1,9 @@
 // The connectivity half of a step: quality flips (paper 001 Algorithm 4,
 // generalised to every bad tet, or as printed: around poor tets whose
 // vertices all stay put), vertex insertion for spades, caps and
-// slivers (paper 000 sec. 2.3) and, on request, collapse of short edges
-// (paper 002 sec. 3.5).  Every change is tentative: it is kept only when
+// slivers (paper 000 sec. 2.3), else at the circumcentre of a bad tet
+// (Delaunay refinement, Bowyer-Watson within the region) and, on request,
+// collapse of short edges (paper 002 sec. 3.5).  Every change is tentative: it is kept only when
 // the worst dihedral sine of the tets it touched went up.
 #pragma once
 
