@@ -37,17 +37,24 @@ VertexColouring colour_vertices(const TetMesh& mesh) {
     std::vector<int32_t>& colour = out.colour;
     colour.assign(static_cast<size_t>(n), -1);
     std::vector<int32_t> taken_by;
+    std::vector<int32_t>& lower = out.lower;
+    lower.assign(static_cast<size_t>(n), 0);
     // Greedy in the caller's order, so the colours (and with them the
     // results of a sweep) do not depend on the internal order.  A vertex
     // not coloured yet has colour -1: every coloured one comes earlier.
+    // Each (tet, neighbour) pair is counted once, when the later of its
+    // two vertices is coloured, for the one of them of higher colour.
     for (int32_t caller = 0; caller < n; ++caller) {
         const int32_t v = mesh.internal_vertex(caller);
         if (mesh.star_begin(v) == mesh.star_end(v)) continue;
-        colour[v] = first_free_colour(mesh, v, colour, taken_by, [](int32_t) { return true; });
+        const int32_t c = colour[v] = first_free_colour(mesh, v, colour, taken_by, [](int32_t) { return true; });
+        for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
+            for (const int32_t u : mesh.tets[*t]) {
+                if (u == v || colour[u] < 0) continue;
+                ++lower[colour[u] < c ? v : u];
+            }
     }
     out.count = static_cast<int32_t>(taken_by.size());
-    out.lower.resize(static_cast<size_t>(n));
-    for (int32_t v = 0; v < n; ++v) out.lower[v] = lower_pairs(mesh, v, colour);
     return out;
 }
 

@@ -101,6 +101,18 @@ bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing& r, co
     const int n = static_cast<int>(r.ring.size());  // polygon vertices
     if (n > kMaxEdgeRing || n < 3 || !one_region(mesh, r.tets)) return false;
     if (!r.closed && (!rules.surface_may_change || mesh.is_feature_edge(a, b))) return false;
+    const FaceKey f0 = FaceKey::of(a, b, r.ring.front()), f1 = FaceKey::of(a, b, r.ring.back());
+    if (!r.closed) {
+        // The edge lies on the surface; its two surface faces (a, b, ring[0])
+        // and (a, b, ring[n-1]) become (a, ring[n-1], ring[0]) and (b, ...):
+        // only in one plane, with one marker.  Tested first: most surface
+        // edges fail it, and the triangulation costs more.
+        if (mesh.marker(f0) != mesh.marker(f1)) return false;
+        const Vec3& pa = mesh.point(a);
+        const Vec3 nrm = triangle_normal(pa, mesh.point(b), mesh.point(r.ring.front()));
+        const double length = (mesh.point(b) - pa).norm() + (mesh.point(r.ring.back()) - pa).norm();
+        if (!in_plane(nrm, pa, mesh.point(r.ring.back()), length)) return false;
+    }
     // The best triangulation by worst sine alone (most calls end here);
     // the other limits are checked on the winner only.
     PolygonTriangulation dp;
@@ -135,17 +147,6 @@ bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing& r, co
     // No marked face inside the cavity (the faces around the edge).
     for (int i = 0; i < n; ++i)
         if ((r.closed || (i > 0 && i + 1 < n)) && mesh.has_marker(FaceKey::of(a, b, r.ring[i]))) return false;
-    const FaceKey f0 = FaceKey::of(a, b, r.ring.front()), f1 = FaceKey::of(a, b, r.ring.back());
-    if (!r.closed) {
-        // The edge lies on the surface; its two surface faces (a, b, ring[0])
-        // and (a, b, ring[n-1]) become (a, ring[n-1], ring[0]) and (b, ...):
-        // only in one plane, with one marker.
-        if (mesh.marker(f0) != mesh.marker(f1)) return false;
-        const Vec3& pa = mesh.point(a);
-        const Vec3 nrm = triangle_normal(pa, mesh.point(b), mesh.point(r.ring.front()));
-        const double length = (mesh.point(b) - pa).norm() + (mesh.point(r.ring.back()) - pa).norm();
-        if (!in_plane(nrm, pa, mesh.point(r.ring.back()), length)) return false;
-    }
     if (!fits_cavity(mesh, r.tets, fresh)) return false;
     if (rules.delaunay && !delaunay_flip(mesh, r.tets, fresh)) return false;
     const bool marked = !r.closed && mesh.has_marker(f0);
