@@ -72,17 +72,20 @@ void Improver::set_mode(int mode) {
     mode_ = mode;
     classes_valid_ = false;
     settled_.clear();
+    failed_.unrefined.clear();
 }
 
 void Improver::set_param_int(int key, int32_t value) {
     bodt::set_param_int(params_, key, value);
     settled_.clear();
+    failed_.unrefined.clear();
 }
 
 void Improver::set_param_double(int key, double value) {
     bodt::set_param_double(params_, key, value);
     classes_valid_ = false;
     settled_.clear();
+    failed_.unrefined.clear();
     if (key == BODT_PARAM_FEATURE_ANGLE || key == BODT_PARAM_FIT_TOLERANCE) geometry_valid_ = false;
 }
 

@@ -120,6 +120,11 @@ std::vector<int32_t> insert_for(EditableMesh& mesh, int32_t t, const BadTet& bad
     return made;
 }
 
+Tet sorted(Tet q) {
+    std::sort(q.begin(), q.end());
+    return q;
+}
+
 // Refinement at the circumcentre is for tets with an interior vertex: one
 // whose four vertices all lie on the boundary is flat against it, its
 // circumcentre outside the region or far from the tet (the plan fails,
@@ -350,12 +355,17 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
             const bool shaped = bad.kind == BadTetKind::Spade || bad.kind == BadTetKind::Cap || bad.kind == BadTetKind::Sliver;
             // Else, or if that did not pass, the circumcentre (Delaunay
             // refinement), planned first: most plans fail, and cheaply.
+            const Tet quad = sorted(mesh.tet(t));
             const auto refine = [&] {
+                if (failed.unrefined.count(quad)) return false;
                 const CavityPlan plan = plan_cavity(mesh, t, circumcenter(p), loose, 0.0);
-                return plan.valid() && insert([&] {
-                    const int32_t v = insert_planned(mesh, plan);
-                    return v >= 0 ? std::vector<int32_t>{v} : std::vector<int32_t>{};
-                });
+                if (plan.valid() && insert([&] {
+                        const int32_t v = insert_planned(mesh, plan);
+                        return v >= 0 ? std::vector<int32_t>{v} : std::vector<int32_t>{};
+                    }))
+                    return true;
+                failed.unrefined.insert(quad);
+                return false;
             };
             if ((shaped && insert([&] { return insert_for(mesh, t, bad, loose); })) ||
                 (has_interior_vertex(mesh, t) && refine()))

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <set>
 
 namespace bodt {
 
@@ -44,6 +45,10 @@ struct TopologyCounts {
 struct FailedAttempts {
     FailedFlips flips;
     StuckTets tets;
+    // The tets (sorted vertex quads) whose circumcentre refinement failed:
+    // not tried again while the tet stands, even if its vertices moved (a
+    // failed insertion costs as much as the rest of a step's pass).
+    std::set<Tet> unrefined;
 
     // Starts a pass over `mesh`; see FailedFlips and StuckTets.
     void begin_pass(const EditableMesh& mesh, const SweepHistory* history) {
