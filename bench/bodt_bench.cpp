@@ -1078,9 +1078,11 @@ bool ran_ok(const RunResult& r) { return r.has_after && !std::strcmp(r.status, "
 // times: every result is deterministic).
 constexpr int32_t kRepeatBelowTets = 200000;
 
+int repeats_wanted(const Options& opt) { return opt.repeat_small > 0 ? opt.repeat_small : opt.scale ? 5 : 1; }
+
 RunResult run_timed(const Case& c, PreparedMesh& pm, const Variant& var, const Options& opt) {
     std::vector<RunResult> runs{run_isolated(c, pm, var, opt)};
-    const int wanted = opt.repeat_small > 0 ? opt.repeat_small : opt.scale ? 5 : 1;
+    const int wanted = repeats_wanted(opt);
     if (!var.is_peer() && ran_ok(runs[0]) && runs[0].before.tets < kRepeatBelowTets)
         while (static_cast<int>(runs.size()) < wanted) {
             runs.push_back(run_isolated(c, pm, var, opt));
@@ -1840,7 +1842,7 @@ std::string markdown(const std::vector<Row>& rows, const Options& opt, const std
 
     // ---- table 4: size and speed
     if (!scale_table.empty()) {
-        const int repeats = opt.repeat_small > 0 ? opt.repeat_small : opt.scale ? 5 : 1;
+        const int repeats = repeats_wanted(opt);
         const std::string kept = repeats > 1 ? fmt(" (below 2e5 tets, the run of median time of %d)", repeats) : "";
         md += "\n## Size and speed\n\nThe box cases (.shuffled: the jittered box numbered at random): create s = "
               "the wall time of bodt_mesh_create; s = the steps' wall time" + kept + "; updates = vertices moved + moves "

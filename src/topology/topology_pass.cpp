@@ -323,6 +323,7 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
     if (s.flip) counts.flips += flip_pass(mesh, s.rules, s.flip_angle_deg, failed);
     if (s.swap_all_boundary) counts.flips += all_boundary_pass(mesh, s, loose);
     if (s.insert || s.collapse) {
+        std::vector<Tet> unrefined;  // this pass's, for failed.unrefined
         for (int32_t t : bad_tets_by_quality(mesh, bad_sine)) {
             if (!mesh.alive(t)) continue;
             const TetPoints p = mesh.tet_points(t);
@@ -343,7 +344,13 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
                     continue;
                 }
             }
-            if (!s.insert || failed.tets.stuck(mesh, t, StuckTets::kInsertion)) continue;
+            if (!s.insert) continue;
+            const Tet quad = sorted(mesh.tet(t));
+            const bool unrefinable = std::binary_search(failed.unrefined.begin(), failed.unrefined.end(), quad);
+            if (failed.tets.stuck(mesh, t, StuckTets::kInsertion)) {
+                if (unrefinable) unrefined.push_back(quad);  // still standing
+                continue;
+            }
             int32_t made = 0;
             const auto insert = [&](auto&& op) {
                 return try_change(mesh, t, s, [&] {
@@ -355,16 +362,16 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
             const bool shaped = bad.kind == BadTetKind::Spade || bad.kind == BadTetKind::Cap || bad.kind == BadTetKind::Sliver;
             // Else, or if that did not pass, the circumcentre (Delaunay
             // refinement), planned first: most plans fail, and cheaply.
-            const Tet quad = sorted(mesh.tet(t));
             const auto refine = [&] {
-                if (failed.unrefined.count(quad)) return false;
-                const CavityPlan plan = plan_cavity(mesh, t, circumcenter(p), loose, 0.0);
-                if (plan.valid() && insert([&] {
-                        const int32_t v = insert_planned(mesh, plan);
-                        return v >= 0 ? std::vector<int32_t>{v} : std::vector<int32_t>{};
-                    }))
-                    return true;
-                failed.unrefined.insert(quad);
+                if (!unrefinable) {
+                    const CavityPlan plan = plan_cavity(mesh, t, circumcenter(p), loose, 0.0);
+                    if (plan.valid() && insert([&] {
+                            const int32_t v = insert_planned(mesh, plan);
+                            return v >= 0 ? std::vector<int32_t>{v} : std::vector<int32_t>{};
+                        }))
+                        return true;
+                }
+                unrefined.push_back(quad);
                 return false;
             };
             if ((shaped && insert([&] { return insert_for(mesh, t, bad, loose); })) ||
@@ -373,6 +380,8 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
             else
                 failed.tets.failed(mesh, t, StuckTets::kInsertion);
         }
+        std::sort(unrefined.begin(), unrefined.end());
+        failed.unrefined = std::move(unrefined);
         if (s.flip && counts.inserted + counts.collapsed > 0)
             counts.flips += flip_pass(mesh, s.rules, s.flip_angle_deg, failed);
     }

@@ -13,7 +13,7 @@
 
 #include <cstdint>
 #include <functional>
-#include <set>
+#include <vector>
 
 namespace bodt {
 
@@ -45,10 +45,11 @@ struct TopologyCounts {
 struct FailedAttempts {
     FailedFlips flips;
     StuckTets tets;
-    // The tets (sorted vertex quads) whose circumcentre refinement failed:
-    // not tried again while the tet stands, even if its vertices moved (a
-    // failed insertion costs as much as the rest of a step's pass).
-    std::set<Tet> unrefined;
+    // The bad tets (sorted vertex quads, ascending) whose circumcentre
+    // refinement failed: not tried again while the tet stands, even if its
+    // vertices moved (a failed insertion costs as much as the rest of a
+    // step's pass).  Each pass keeps only those of its own bad tets.
+    std::vector<Tet> unrefined;
 
     // Starts a pass over `mesh`; see FailedFlips and StuckTets.
     void begin_pass(const EditableMesh& mesh, const SweepHistory* history) {
