@@ -127,7 +127,8 @@ const char* mode_name(int mode) {
 int effective_ops(int mode, int ops) {
     if (ops != kOpsDefault) return ops;
     switch (mode) {
-        case BODT_MODE_BODT: return BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT;
+        case BODT_MODE_BODT:
+        case BODT_MODE_PHASED_ODT: return BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT | BODT_OP_COLLAPSE;
         case BODT_MODE_OPT_WEIGHTED: return BODT_OP_SMOOTH | BODT_OP_FLIP;
         default: return BODT_OP_SMOOTH;
     }
@@ -261,7 +262,7 @@ void usage(FILE* f) {
                  "usage: bodt_bench [options]\n"
                  "  --modes LIST         comma-separated variants: laplace, odt, bodt-basic,\n"
                  "                       bodt-smooth (mode bodt, ops smooth: the 0.2 behaviour),\n"
-                 "                       bodt (mode bodt, its default ops smooth+flip+insert),\n"
+                 "                       bodt (mode bodt, its default ops smooth+flip+insert+collapse),\n"
                  "                       nodt (natural ODT), opt-smooth (mode opt-weighted, ops\n"
                  "                       smooth: paper 001's improved smoothing), opt (mode\n"
                  "                       opt-weighted, its default ops smooth+flip: paper 001's\n"

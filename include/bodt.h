@@ -451,15 +451,21 @@ enum bodt_param {
     BODT_PARAM_CORNER_RATIO = 7,
     /* int, default BODT_OPS_MODE_DEFAULT: which operations a step does, a
      * bitmask of enum bodt_op.  The mode's default is SMOOTH | FLIP | INSERT
-     * for BODT_MODE_BODT (paper 000 Fig. 1: insertion where needed, then
-     * smoothing, repeated), SMOOTH | FLIP for BODT_MODE_OPT_WEIGHTED (paper
-     * 001 sec. 2) and SMOOTH for the other modes. */
+     * | COLLAPSE for BODT_MODE_BODT (paper 000 Fig. 1: insertion where
+     * needed, then smoothing, repeated; and the short edges smoothing cannot
+     * even out collapsed) and BODT_MODE_PHASED_ODT, SMOOTH | FLIP for
+     * BODT_MODE_OPT_WEIGHTED (paper 001 sec. 2) and SMOOTH for the other
+     * modes. */
     BODT_PARAM_OPS = 8,
     /* int 0/1, default 0: 1 keeps every boundary and interface triangle as
      * it is (no split, flip or collapse there); only BODT_MODE_BODT_BASIC
-     * and BODT_MODE_BODT change them otherwise, and only flat parts of the
-     * surface are retriangulated, with their markers, and only splits put
-     * new vertices on the surface: its shape never changes. */
+     * and BODT_MODE_BODT change them otherwise: flips retriangulate flat
+     * parts of the surface only, with their markers, splits put new
+     * vertices on the split edge or face, and a collapse of a surface edge
+     * (BODT_OP_COLLAPSE) may bend the surface around it by at most a tenth
+     * of the edge's length (about 6 degrees; on a sphere of radius R an
+     * edge of length L moves it by about L^2 / 8R), never across a feature
+     * edge or corner. */
     BODT_PARAM_KEEP_SURFACE = 9,
     /* double, degrees, default 15: a tet with a dihedral angle below this or
      * above 180 minus this is bad: BODT_OP_INSERT breaks bad spades, caps
@@ -541,8 +547,10 @@ enum bodt_op {
                              edge or face is split; else, in a bad tet with
                              an interior vertex, insert its circumcentre
                              (Bowyer-Watson, within its region)             */
-    BODT_OP_COLLAPSE = 8  /* collapse the short edge of a bad tet (paper 002
-                             sec. 3.5.1 position rules)                     */
+    BODT_OP_COLLAPSE = 8  /* collapse the shortest edge of a bad tet with a
+                             short edge (paper 002 sec. 3.5.1 position
+                             rules; on the surface see
+                             BODT_PARAM_KEEP_SURFACE)                      */
 };
 #define BODT_OPS_MODE_DEFAULT (-1)
 

@@ -69,6 +69,12 @@
 //   collapse_pass        improve_topology (collapse only) on a box with two
 //                        interior vertices pulled together: the short edge
 //                        goes and the worst sine goes up
+//   collapse_curved      surface_slope on a box with a domed top: every
+//                        collapse of a top edge refused under slope 0 and
+//                        when it bends the surface past the slope; the ones
+//                        done valid, the volume moved within the bound
+//   collapse_curved_pass a short edge on the dome: collapsed under slope
+//                        0.1 (the worst sine up), not under 0
 //   flip_pass_plain      improve_topology (flips only, with and without sine
 //                        bounds from the tets' shapes) gives the same mesh
 //                        and count as the plain pass written out here: every
@@ -375,8 +381,10 @@ double depth_in(const bodt::TetPoints& p, const Vec3& x) {
 }
 
 // Every invariant of the header comment; returns the written mesh (topology
-// built).
-TetMesh check_valid(const EditableMesh& em, const Reference& ref, const char* what) {
+// built).  With shape_kept false (a collapse under TopologyRules::
+// surface_slope, which may bend the surface) the volumes, areas and feature
+// lengths are the caller's to check.
+TetMesh check_valid(const EditableMesh& em, const Reference& ref, const char* what, bool shape_kept = true) {
     // The EditableMesh's own incidence.
     int64_t alive = 0, listed = 0;
     for (int32_t t = 0; t < em.tet_capacity(); ++t) {
@@ -472,29 +480,31 @@ TetMesh check_valid(const EditableMesh& em, const Reference& ref, const char* wh
     }
 
     // What the input fixed.
-    const Measures got = measure(m, owners);
-    const Measures& want = ref.measures;
-    const double vtol = 1e-12 * want.total_volume, atol = 1e-12 * want.total_area;
-    CHECK(got.volume.size() == want.volume.size(), "%zu regions, expected %zu", got.volume.size(), want.volume.size());
-    for (const auto& [r, v] : want.volume)
-        CHECK(got.volume.count(r) && std::fabs(got.volume.at(r) - v) <= vtol, "region %d: volume %.17g, expected %.17g",
-              r, got.volume.count(r) ? got.volume.at(r) : 0.0, v);
-    CHECK(got.area.size() == want.area.size(), "%zu kinds of surface face, expected %zu", got.area.size(),
-          want.area.size());
-    for (const auto& [key, area] : want.area) {
-        CHECK(got.area.count(key), "no surface face of marker %d between regions %d and %d left", key[0], key[1], key[2]);
-        CHECK(std::fabs(got.area.at(key) - area) <= atol, "marker %d, regions %d/%d: area %.17g, expected %.17g", key[0],
-              key[1], key[2], got.area.at(key), area);
-        CHECK((got.vector_area.at(key) - want.vector_area.at(key)).norm() <= atol,
-              "marker %d, regions %d/%d: the vector area moved by %g", key[0], key[1], key[2],
-              (got.vector_area.at(key) - want.vector_area.at(key)).norm());
-    }
-    CHECK(got.feature_length.size() == want.feature_length.size(), "feature edges of %zu refs, expected %zu",
-          got.feature_length.size(), want.feature_length.size());
-    for (const auto& [ref, length] : want.feature_length) {
-        const double have = got.feature_length.count(ref) ? got.feature_length.at(ref) : 0.0;
-        CHECK(std::fabs(have - length) <= 1e-12 * (1.0 + length), "feature edges of ref %d: length %.17g, expected %.17g",
-              ref, have, length);
+    if (shape_kept) {
+        const Measures got = measure(m, owners);
+        const Measures& want = ref.measures;
+        const double vtol = 1e-12 * want.total_volume, atol = 1e-12 * want.total_area;
+        CHECK(got.volume.size() == want.volume.size(), "%zu regions, expected %zu", got.volume.size(), want.volume.size());
+        for (const auto& [r, v] : want.volume)
+            CHECK(got.volume.count(r) && std::fabs(got.volume.at(r) - v) <= vtol, "region %d: volume %.17g, expected %.17g",
+                  r, got.volume.count(r) ? got.volume.at(r) : 0.0, v);
+        CHECK(got.area.size() == want.area.size(), "%zu kinds of surface face, expected %zu", got.area.size(),
+              want.area.size());
+        for (const auto& [key, area] : want.area) {
+            CHECK(got.area.count(key), "no surface face of marker %d between regions %d and %d left", key[0], key[1], key[2]);
+            CHECK(std::fabs(got.area.at(key) - area) <= atol, "marker %d, regions %d/%d: area %.17g, expected %.17g", key[0],
+                  key[1], key[2], got.area.at(key), area);
+            CHECK((got.vector_area.at(key) - want.vector_area.at(key)).norm() <= atol,
+                  "marker %d, regions %d/%d: the vector area moved by %g", key[0], key[1], key[2],
+                  (got.vector_area.at(key) - want.vector_area.at(key)).norm());
+        }
+        CHECK(got.feature_length.size() == want.feature_length.size(), "feature edges of %zu refs, expected %zu",
+              got.feature_length.size(), want.feature_length.size());
+        for (const auto& [ref, length] : want.feature_length) {
+            const double have = got.feature_length.count(ref) ? got.feature_length.at(ref) : 0.0;
+            CHECK(std::fabs(have - length) <= 1e-12 * (1.0 + length), "feature edges of ref %d: length %.17g, expected %.17g",
+                  ref, have, length);
+        }
     }
 
     // History: parents, corners.
@@ -2441,6 +2451,197 @@ void test_collapse_pass(void**) {
     assert_true(after > before);
 }
 
+// ------------------------------------------------------- curved collapses
+
+// The unit box [0, 1]^3 of n^3 Kuhn cubes with its top bent into a dome,
+// z -> z (1 + bulge sin(pi x) sin(pi y)): the sides stay planes, the top is
+// curved and smooth, the bottom flat.  `top` gets the vertices inside the
+// top side (not on its rim).
+Input dome_box(int n, double bulge, std::vector<int32_t>& top) {
+    test_mesh tm{};
+    assert_int_equal(tm_make_cubes(&tm, n, 1.0, nullptr, nullptr, 0.0, 1), 0);
+    Input in = from_test_mesh(tm, nullptr);
+    tm_free(&tm);
+    top.clear();
+    for (int32_t v = 0; v < static_cast<int32_t>(in.points.size()); ++v) {
+        Vec3& p = in.points[v];
+        if (p.z() == 1.0 && p.x() > 0.0 && p.x() < 1.0 && p.y() > 0.0 && p.y() < 1.0) top.push_back(v);
+        p.z() *= 1.0 + bulge * std::sin(M_PI * p.x()) * std::sin(M_PI * p.y());
+    }
+    return in;
+}
+
+// The boundary faces of a mesh at vertex v (in one tet only), outward.
+std::vector<std::array<Vec3, 3>> boundary_faces_at(const TetMesh& m, int32_t v) {
+    std::vector<std::array<Vec3, 3>> out;
+    for (const int32_t* t = m.star_begin(v); t != m.star_end(v); ++t)
+        for (int i = 0; i < 4; ++i)
+            if (m.tets[*t][i] != v && m.neighbors[*t][i] < 0) {
+                const auto& k = bodt::kFaceVertex[i];
+                const Tet& q = m.tets[*t];
+                out.push_back({m.points[q[k[0]]], m.points[q[k[1]]], m.points[q[k[2]]]});
+            }
+    return out;
+}
+
+// How far x lies off the planes of the boundary faces at v, over |x - v|:
+// the slope a collapse of v to x bends the surface by.
+double bend_of(const TetMesh& m, int32_t v, const Vec3& x) {
+    double most = 0.0;
+    for (const auto& f : boundary_faces_at(m, v)) {
+        const Vec3 n = (f[1] - f[0]).cross(f[2] - f[0]).normalized();
+        most = std::max(most, std::fabs(n.dot(x - m.points[v])) / (x - m.points[v]).norm());
+    }
+    return most;
+}
+
+// The most a boundary face at v turns when v goes to x (the faces holding
+// x, which go, left out), as the cosine of the angle.
+double least_turn_cosine(const TetMesh& m, int32_t v, const Vec3& x) {
+    double least = 1.0;
+    for (auto f : boundary_faces_at(m, v)) {
+        if (f[0] == x || f[1] == x || f[2] == x) continue;
+        const Vec3 before = (f[1] - f[0]).cross(f[2] - f[0]);
+        for (Vec3& c : f)
+            if (c == m.points[v]) c = x;
+        const Vec3 after = (f[1] - f[0]).cross(f[2] - f[0]);
+        least = std::min(least, before.dot(after) / (before.norm() * after.norm()));
+    }
+    return least;
+}
+
+double volume_of(const TetMesh& m) {
+    double v = 0.0;
+    for (int32_t t = 0; t < m.num_tets(); ++t) {
+        const auto p = m.tet_points(t);
+        v += bodt::signed_volume(p[0], p[1], p[2], p[3]);
+    }
+    return v;
+}
+
+double boundary_area_at(const TetMesh& m, int32_t v) {
+    double a = 0.0;
+    for (const auto& f : boundary_faces_at(m, v)) a += 0.5 * (f[1] - f[0]).cross(f[2] - f[0]).norm();
+    return a;
+}
+
+// Top vertex v of a dome box moved to w + pull (v - w), on the dome.
+void pull_on_dome(Input& in, int32_t v, int32_t w, double pull, double bulge) {
+    Vec3& p = in.points[v];
+    p = in.points[w] + pull * (p - in.points[w]);
+    p.z() = 1.0 + bulge * std::sin(M_PI * p.x()) * std::sin(M_PI * p.y());
+}
+
+// TopologyRules::surface_slope on a dome's top: every half-edge collapse of
+// a top vertex v into a top neighbour u, on the dome as it is and with v
+// pulled to a tenth of the way from a neighbour w, under slopes 0, 0.02 and
+// 0.1.  Into w that is a short edge, whose collapse turns the faces around
+// it little however far w lies off their planes; into another neighbour
+// the needle faces (v, w, .) turn most.  Slope 0 refuses them all (no face
+// at v holds a neighbour's point off its own plane); a collapse that bends
+// the surface past the slope is refused; one that passes turned no face by
+// more than asin(slope) and leaves a valid mesh whose volume moved by at
+// most the slope times the edge's length times the area around v.
+void test_collapse_curved(void**) {
+    constexpr double kBulge = 0.05;
+    std::vector<int32_t> top;
+    const Input dome = dome_box(6, kBulge, top);
+    const Case plain = make_case(dome);
+    int done = 0, too_bent = 0, kept_flat = 0, turning = 0;
+    for (int32_t v : top) {
+        std::set<int32_t> around;
+        for (const auto& f : boundary_faces_at(plain.mesh, v))
+            for (const Vec3& x : f)
+                for (int32_t w : top)
+                    if (plain.mesh.points[w] == x && w != v) around.insert(w);
+        for (int32_t w : around)
+            for (const double pull : {1.0, 0.1}) {
+                Input in = dome;
+                pull_on_dome(in, v, w, pull, kBulge);
+                const Case c = make_case(in);
+                const Reference ref = reference_of(c);
+                const double volume = volume_of(c.mesh);
+                for (int32_t u : around) {
+                    if (pull == 1.0 && u != w) continue;  // the same as (v, u) unpulled
+                    const double bend = bend_of(c.mesh, v, c.mesh.points[u]);
+                    const double turn = least_turn_cosine(c.mesh, v, c.mesh.points[u]);
+                    for (const double slope : {0.0, 0.02, 0.1}) {
+                        TopologyRules rules = loose_rules();
+                        rules.surface_slope = slope;
+                        char what[128];
+                        std::snprintf(what, sizeof what, "curved collapse %d -> %d, %d pulled by %g, slope %g", v, u, w,
+                                      pull, slope);
+                        EditableMesh em(c.mesh, c.classes);
+                        if (bend > slope) {
+                            expect_refused(em, what, [&] { return bodt::collapse_half_edge(em, v, u, rules, 0.0); });
+                            (slope == 0.0 ? kept_flat : too_bent) += 1;
+                            continue;
+                        }
+                        turning += turn < std::sqrt(1.0 - slope * slope);
+                        if (!bodt::collapse_half_edge(em, v, u, rules, 0.0)) continue;
+                        CHECK(turn >= std::sqrt(1.0 - slope * slope), "a face turned by %.2f degrees",
+                              std::acos(turn) * kDeg);
+                        const TetMesh out = check_valid(em, ref, what, false);
+                        const double moved = std::fabs(volume_of(out) - volume);
+                        const double bound =
+                            slope * (c.mesh.points[u] - c.mesh.points[v]).norm() * boundary_area_at(c.mesh, v);
+                        CHECK(moved <= bound, "the volume moved by %g, more than %g", moved, bound);
+                        ++done;
+                    }
+                }
+            }
+    }
+    print_message("curved collapses: %d done, %d bent past the slope, %d off the plane at slope 0, %d within the "
+                  "slope turning a face past it\n",
+                  done, too_bent, kept_flat, turning);
+    assert_true(done > 0 && too_bent > 0 && kept_flat > 0 && turning > 0);
+}
+
+// A dome's top vertex pulled most of the way to a top neighbour: a short
+// edge on a curved surface, with flat tets under it that no flip or
+// insertion breaks.  improve_topology (collapse only) takes the edge away
+// under surface_slope 0.1, and not under 0 (the surface's planes kept).
+void test_collapse_curved_pass(void**) {
+    const char* what = "curved collapse pass";
+    std::vector<int32_t> top;
+    Input in = dome_box(6, 0.05, top);
+    const int32_t v = top[top.size() / 2];
+    int32_t w = -1;
+    for (const Tet& q : in.tets)
+        for (int32_t u : q)
+            if (std::count(q.begin(), q.end(), v) && std::count(top.begin(), top.end(), u) && u != v) w = u;
+    assert_true(w >= 0);
+    pull_on_dome(in, v, w, 0.05, 0.05);
+    for (const Tet& r : in.tets)
+        assert_true(orient6(in.points[r[0]], in.points[r[1]], in.points[r[2]], in.points[r[3]]) > 0);
+    const Case c = make_case(in);
+    const Reference ref = reference_of(c);
+    const double before = worst_sine(c.mesh);
+    double after[2];
+    int collapsed[2];
+    for (int k = 0; k < 2; ++k) {
+        EditableMesh em(c.mesh, c.classes);
+        bodt::TopologySettings s;
+        s.rules = loose_rules();
+        s.rules.surface_slope = k == 0 ? 0.0 : 0.1;
+        s.flip = false;
+        s.insert = false;
+        s.collapse = true;
+        collapsed[k] = bodt::improve_topology(em, s).collapsed;
+        const TetMesh out = check_valid(em, ref, what, k == 0);
+        after[k] = worst_sine(out);
+        if (k == 1) {
+            const double moved = std::fabs(volume_of(out) - volume_of(c.mesh));
+            CHECK(moved <= 0.1 * (in.points[w] - in.points[v]).norm() * boundary_area_at(c.mesh, v) + 1e-15,
+                  "the volume moved by %g", moved);
+        }
+    }
+    print_message("curved collapse pass: worst sine %.4f -> %.4f (slope 0, %d collapsed), %.4f (slope 0.1, %d)\n",
+                  before, after[0], collapsed[0], after[1], collapsed[1]);
+    assert_true(collapsed[1] > 0);
+    assert_true(after[1] > after[0] + 0.05);
+}
+
 }  // namespace
 
 int main(void) {
@@ -2462,6 +2663,8 @@ int main(void) {
         cmocka_unit_test(test_insertion),
         cmocka_unit_test(test_flip_pass),
         cmocka_unit_test(test_collapse_pass),
+        cmocka_unit_test(test_collapse_curved),
+        cmocka_unit_test(test_collapse_curved_pass),
         cmocka_unit_test(test_flip_pass_plain),
         cmocka_unit_test(test_sine_bounds),
         cmocka_unit_test(test_failed_flips),

@@ -17,6 +17,11 @@ namespace bodt {
 
 namespace {
 
+// TopologyRules::surface_slope in the modes whose surface may change: a
+// collapse may take the surface off a face's plane by a tenth of the edge
+// it removes (about 6 degrees), and turn no face by more.
+constexpr double kCurvedCollapseSlope = 0.1;
+
 void require_finite(const std::vector<Vec3>& points) {
     for (const Vec3& p : points)
         if (!p.allFinite()) throw Error(BODT_ERR_NUMERIC, "a vertex position became non-finite");
@@ -228,9 +233,9 @@ void Improver::sweep_opt_weighted(TetMesh& mesh, const RegionSurfaces& surfaces,
 
 int32_t Improver::ops() const {
     if (params_.ops >= 0) return params_.ops;
-    if (mode_ == BODT_MODE_BODT) return BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT;
+    if (mode_ == BODT_MODE_BODT || mode_ == BODT_MODE_PHASED_ODT)
+        return BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT | BODT_OP_COLLAPSE;
     if (mode_ == BODT_MODE_OPT_WEIGHTED) return BODT_OP_SMOOTH | BODT_OP_FLIP;
-    if (mode_ == BODT_MODE_PHASED_ODT) return BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT | BODT_OP_COLLAPSE;
     return BODT_OP_SMOOTH;
 }
 
@@ -272,6 +277,11 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     TopologySettings settings;
     settings.rules.surface_may_change =
         params_.keep_surface == 0 && (mode_ == BODT_MODE_BODT || mode_ == BODT_MODE_BODT_BASIC);
+    // Where the surface may change, a short surface edge on a curved part
+    // may go (operations.hpp): the B-ODT sweep moves its vertices in their
+    // tangent planes, which bends the surface as much, and such an edge
+    // leaves flat tets that no smoothing or insertion breaks.
+    if (settings.rules.surface_may_change) settings.rules.surface_slope = kCurvedCollapseSlope;
     const bool paper_001 = mode_ == BODT_MODE_OPT_WEIGHTED;
     settings.rules.min_stretch = params_.min_stretch;
     settings.rules.never_worse = params_.never_worse != 0;

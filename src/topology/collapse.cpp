@@ -3,6 +3,7 @@
 #include "topology/operations.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
 namespace bodt {
@@ -11,37 +12,77 @@ namespace {
 
 bool has_tet(const EditableMesh& mesh, const Tet& q) { return !mesh.tets_holding({q[0], q[1], q[2], q[3]}).empty(); }
 
-bool has_face(const EditableMesh& mesh, int32_t a, int32_t b, int32_t c) {
-    int32_t t[2];
-    return mesh.face_tets(FaceKey::of(a, b, c), t) > 0;
-}
+// The faces at a vertex, and which of them are on the surface (a
+// boundary, an interface or a marked face), read off its star alone: each
+// face at v lies in one or two of v's tets.  A collapse asks about the
+// faces at its two ends many times; a walk per question
+// (EditableMesh::is_surface_face) made it quadratic in the star.
+class FacesAt {
+public:
+    FacesAt(const EditableMesh& mesh, int32_t v) {
+        std::vector<std::pair<FaceKey, int32_t>> seen;  // face, its tet's region
+        for (int32_t t : mesh.tets_of(v)) {
+            const Tet& q = mesh.tet(t);
+            for (int i = 0; i < 4; ++i)
+                if (q[i] != v)
+                    seen.push_back({FaceKey::of(q[kFaceVertex[i][0]], q[kFaceVertex[i][1]], q[kFaceVertex[i][2]]), mesh.region(t)});
+        }
+        std::sort(seen.begin(), seen.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        for (size_t i = 0; i < seen.size();) {
+            size_t j = i + 1;
+            while (j < seen.size() && seen[j].first == seen[i].first) ++j;
+            const FaceKey& f = seen[i].first;
+            all_.push_back(f);
+            if (j - i == 1 || (j - i == 2 && seen[i].second != seen[i + 1].second) || mesh.has_marker(f))
+                surface_.push_back(f);
+            i = j;
+        }
+    }
+    bool has(const FaceKey& f) const { return std::binary_search(all_.begin(), all_.end(), f); }
+    bool on_surface(const FaceKey& f) const { return std::binary_search(surface_.begin(), surface_.end(), f); }
+    // The edge from the vertex to x is on the surface.
+    bool surface_edge_to(int32_t x) const {
+        return std::any_of(surface_.begin(), surface_.end(), [x](const FaceKey& f) { return holds3(f, x); });
+    }
+
+private:
+    static bool holds3(const FaceKey& f, int32_t x) { return f.v[0] == x || f.v[1] == x || f.v[2] == x; }
+    std::vector<FaceKey> all_, surface_;
+};
 
 // The link condition (Dey et al.), with the outside of the domain as one
 // more vertex: the vertices and edges that v and w both see are exactly
 // those around the edge (v, w), so the collapse glues nothing together.
-bool link_condition(const EditableMesh& mesh, int32_t v, int32_t w) {
+bool link_condition(const EditableMesh& mesh, int32_t v, int32_t w, const FacesAt& at_v, const FacesAt& at_w) {
     std::vector<int32_t> nv, nw, common;
     mesh.neighbors(v, nv);
     mesh.neighbors(w, nw);
     std::set_intersection(nv.begin(), nv.end(), nw.begin(), nw.end(), std::back_inserter(common));
     for (int32_t x : common) {
-        if (!has_face(mesh, v, w, x)) return false;
+        if (!at_v.has(FaceKey::of(v, w, x))) return false;
         // Both (v, x) and (w, x) on the surface: (v, w, x) must be a surface face.
-        if (mesh.is_surface_edge(v, x) && mesh.is_surface_edge(w, x) && !mesh.is_surface_face(FaceKey::of(v, w, x)))
-            return false;
+        if (at_v.surface_edge_to(x) && at_w.surface_edge_to(x) && !at_v.on_surface(FaceKey::of(v, w, x))) return false;
     }
     for (size_t i = 0; i < common.size(); ++i)
         for (size_t j = i + 1; j < common.size(); ++j) {
             const int32_t x = common[i], y = common[j];
-            if (has_face(mesh, v, x, y) && has_face(mesh, w, x, y) && !has_tet(mesh, {v, w, x, y})) return false;
+            if (at_v.has(FaceKey::of(v, x, y)) && at_w.has(FaceKey::of(w, x, y)) && !has_tet(mesh, {v, w, x, y}))
+                return false;
         }
     return true;
 }
 
+// A surface face's normal before and after a collapse: it keeps its side,
+// and within rules.surface_slope turns by at most asin(surface_slope).
+bool turns_little(const Vec3& before, const Vec3& after, const TopologyRules& rules) {
+    const double slope = std::min(rules.surface_slope, 1.0);
+    return after.dot(before) > std::sqrt(1.0 - slope * slope) * after.norm() * before.norm() * (slope > 0.0);
+}
+
 // Where v may go along its feature edges: to w, over a feature edge, with
-// the line straight at v so that it keeps its shape.
-// On a curved feature line (rules.on_curved_shape) v may go to w when w
-// lies on the line's fitted shape.
+// the line straight at v (to rules.surface_slope) so that it keeps its
+// shape.  On a curved feature line (rules.on_curved_shape) v may go to w
+// when w lies on the line's fitted shape.
 bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double length, const TopologyRules& rules) {
     std::vector<int32_t> around;
     mesh.neighbors(v, around);
@@ -54,7 +95,8 @@ bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double 
     const int32_t u = along[0] == w ? along[1] : along[0];
     const Vec3 d = mesh.point(w) - mesh.point(u);
     const Vec3 off = (mesh.point(v) - mesh.point(u)).cross(d);
-    return off.norm() <= 1e-9 * d.norm() * length && (mesh.point(v) - mesh.point(u)).dot(d) > 0.0;
+    return off.norm() <= std::max(1e-9, rules.surface_slope) * d.norm() * length &&
+           (mesh.point(v) - mesh.point(u)).dot(d) > 0.0;
 }
 
 }  // namespace
@@ -65,10 +107,11 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
     std::vector<int32_t> star(mesh.tets_of(v));
     if (std::none_of(star.begin(), star.end(), [&](int32_t t) { return holds(mesh.tet(t), w); })) return false;
     const bool v_on_surface = cv != VertexClass::Interior;
-    if (v_on_surface && (!rules.surface_may_change || !mesh.is_surface_edge(v, w))) return false;
+    const FacesAt at_v(mesh, v);
+    if (v_on_surface && (!rules.surface_may_change || !at_v.surface_edge_to(w))) return false;
     const double length = (mesh.point(w) - mesh.point(v)).norm();
     if (!feature_lines_allow(mesh, v, w, length, rules)) return false;
-    if (!link_condition(mesh, v, w)) return false;
+    if (!link_condition(mesh, v, w, at_v, FacesAt(mesh, w))) return false;
 
     // The surface faces at v: w must lie in each one's plane, the renamed
     // face must keep its side, and the faces on each side of a non-feature
@@ -94,7 +137,7 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
                 if (q[i] == v) continue;
                 const int32_t a = q[kFaceVertex[i][0]], b = q[kFaceVertex[i][1]], c = q[kFaceVertex[i][2]];
                 const FaceKey f = FaceKey::of(a, b, c);
-                if (!mesh.is_surface_face(f)) continue;
+                if (!at_v.on_surface(f)) continue;
                 const int32_t marker = mesh.marker(f);
                 const int32_t x = a == v ? b : a, y = c == v ? b : c;  // v's two neighbours on f
                 if (!one_marker(x, marker) || !one_marker(y, marker)) return false;
@@ -104,10 +147,10 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
                 }
                 const Vec3 n = triangle_normal(mesh.point(a), mesh.point(b), mesh.point(c));
                 const bool on_shape = rules.on_curved_shape && rules.on_curved_shape(mesh, {a, b, c}, mesh.point(w));
-                if (!on_shape && !in_plane(n, mesh.point(v), mesh.point(w), length)) return false;
+                if (!on_shape && !in_plane(n, mesh.point(v), mesh.point(w), length, rules.surface_slope)) return false;
                 const Vec3 pa = a == v ? mesh.point(w) : mesh.point(a), pb = b == v ? mesh.point(w) : mesh.point(b),
                            pc = c == v ? mesh.point(w) : mesh.point(c);
-                if (!(triangle_normal(pa, pb, pc).dot(n) > 0.0)) return false;
+                if (!turns_little(n, triangle_normal(pa, pb, pc), rules)) return false;
                 renamed.push_back({f, FaceKey::of(a == v ? w : a, b == v ? w : b, c == v ? w : c), mesh.has_marker(f), marker});
             }
         }
@@ -177,6 +220,7 @@ int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRu
     const double length = (mesh.point(a) - old_b).norm();
     const std::vector<int32_t> star(mesh.tets_of(b));
     const TetLimits limits = limits_for(mesh, star, rules, must_exceed);
+    const FacesAt at_b(mesh, b);
     mesh.move_vertex(b, mid);
     bool ok = true;
     for (int32_t t : star) {
@@ -186,10 +230,11 @@ int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRu
         for (int i = 0; ok && i < 4 && rank(b) > 0; ++i) {
             if (q[i] == b) continue;
             const FaceKey f = FaceKey::of(q[kFaceVertex[i][0]], q[kFaceVertex[i][1]], q[kFaceVertex[i][2]]);
-            if (!mesh.is_surface_face(f)) continue;
+            if (!at_b.on_surface(f)) continue;
             const Vec3 n = triangle_normal(f.v[0] == b ? old_b : mesh.point(f.v[0]), f.v[1] == b ? old_b : mesh.point(f.v[1]),
                                            f.v[2] == b ? old_b : mesh.point(f.v[2]));
-            ok = in_plane(n, old_b, mid, length) ||
+            const Vec3 moved = triangle_normal(mesh.point(f.v[0]), mesh.point(f.v[1]), mesh.point(f.v[2]));
+            ok = (in_plane(n, old_b, mid, length, rules.surface_slope) && turns_little(n, moved, rules)) ||
                  (rules.on_curved_shape && rules.on_curved_shape(mesh, {f.v[0], f.v[1], f.v[2]}, mid));
         }
     }

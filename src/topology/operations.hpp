@@ -38,6 +38,15 @@ struct TopologyRules {
     // Where a vertex that a change moves (the midpoint of an edge collapse)
     // goes to stay on its fitted shape; empty: where the change puts it.
     std::function<void(const EditableMesh& mesh, int32_t v, Vec3& x)> snap_to_shape;
+    // How far an edge collapse may take the surface off its faces: the
+    // vertex that stays (or the midpoint) may lie off the plane of each
+    // surface face at the vertex that goes, or off the straight feature
+    // line through it, by this much times the collapsed edge's length, and
+    // no surface face may turn by more than asin of it.  0: the surface
+    // keeps its planes and lines exactly (to round-off).  A short edge on a
+    // curved part then goes for a change of the surface far below its
+    // length: on a sphere of radius R, about L^2 / (8 R).
+    double surface_slope = 0.0;
 };
 
 // The largest number of tets around an edge that edge removal considers.

@@ -328,6 +328,14 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
             if (!mesh.alive(t)) continue;
             const TetPoints p = mesh.tet_points(t);
             const BadTet bad = classify_bad_tet(p, s.bad_angle_deg);
+            // A collapse for t reads what an insertion does (the tets
+            // sharing a vertex with t): one record for both.
+            const Tet quad = sorted(mesh.tet(t));
+            const bool unrefinable = std::binary_search(failed.unrefined.begin(), failed.unrefined.end(), quad);
+            if (failed.tets.stuck(mesh, t, StuckTets::kInsertion)) {
+                if (unrefinable) unrefined.push_back(quad);  // still standing
+                continue;
+            }
             if (bad.kind == BadTetKind::ShortEdge && s.collapse) {
                 // The shortest edge, collapsed by the position rules.
                 int shortest = 0;
@@ -345,12 +353,6 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
                 }
             }
             if (!s.insert) continue;
-            const Tet quad = sorted(mesh.tet(t));
-            const bool unrefinable = std::binary_search(failed.unrefined.begin(), failed.unrefined.end(), quad);
-            if (failed.tets.stuck(mesh, t, StuckTets::kInsertion)) {
-                if (unrefinable) unrefined.push_back(quad);  // still standing
-                continue;
-            }
             int32_t made = 0;
             const auto insert = [&](auto&& op) {
                 return try_change(mesh, t, s, [&] {
