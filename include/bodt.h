@@ -462,10 +462,10 @@ enum bodt_param {
      * and BODT_MODE_BODT change them otherwise: flips retriangulate flat
      * parts of the surface only, with their markers, splits put new
      * vertices on the split edge or face, and a collapse of a surface edge
-     * (BODT_OP_COLLAPSE) may bend the surface around it by at most a tenth
-     * of the edge's length (about 6 degrees; on a sphere of radius R an
-     * edge of length L moves it by about L^2 / 8R), never across a feature
-     * edge or corner. */
+     * of length L (BODT_OP_COLLAPSE) may move the surface off the faces
+     * around it by at most 0.1 sqrt(L h), h the mean length of the surface
+     * edges there, and turn no face by more than about 6 degrees; never
+     * across a feature edge or corner. */
     BODT_PARAM_KEEP_SURFACE = 9,
     /* double, degrees, default 15: a tet with a dihedral angle below this or
      * above 180 minus this is bad: BODT_OP_INSERT breaks bad spades, caps

@@ -18,8 +18,9 @@ namespace bodt {
 namespace {
 
 // TopologyRules::surface_slope in the modes whose surface may change: a
-// collapse may take the surface off a face's plane by a tenth of the edge
-// it removes (about 6 degrees), and turn no face by more.
+// collapse may take the surface off a face's plane by a tenth of sqrt(L h)
+// (L its edge's length, h the size of the faces around), and turn no face
+// by more than asin 0.1 (about 6 degrees).
 constexpr double kCurvedCollapseSlope = 0.1;
 
 void require_finite(const std::vector<Vec3>& points) {

@@ -44,6 +44,18 @@ public:
     bool surface_edge_to(int32_t x) const {
         return std::any_of(surface_.begin(), surface_.end(), [x](const FaceKey& f) { return holds3(f, x); });
     }
+    // The mean length of the surface edges at v (0 without any).
+    double mean_surface_edge(const EditableMesh& mesh, int32_t v) const {
+        std::vector<int32_t> ends;
+        for (const FaceKey& f : surface_)
+            for (int32_t x : f.v)
+                if (x != v) ends.push_back(x);
+        std::sort(ends.begin(), ends.end());
+        ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+        double sum = 0.0;
+        for (int32_t x : ends) sum += (mesh.point(x) - mesh.point(v)).norm();
+        return ends.empty() ? 0.0 : sum / static_cast<double>(ends.size());
+    }
 
 private:
     static bool holds3(const FaceKey& f, int32_t x) { return f.v[0] == x || f.v[1] == x || f.v[2] == x; }
@@ -66,10 +78,22 @@ bool link_condition(const EditableMesh& mesh, int32_t v, int32_t w, const FacesA
     for (size_t i = 0; i < common.size(); ++i)
         for (size_t j = i + 1; j < common.size(); ++j) {
             const int32_t x = common[i], y = common[j];
-            if (at_v.has(FaceKey::of(v, x, y)) && at_w.has(FaceKey::of(w, x, y)) && !has_tet(mesh, {v, w, x, y}))
-                return false;
+            const FaceKey fv = FaceKey::of(v, x, y), fw = FaceKey::of(w, x, y);
+            if (at_v.has(fv) && at_w.has(fw) && !has_tet(mesh, {v, w, x, y})) return false;
+            // The triangle (x, y, outside) in both links: the two surface
+            // faces would be glued into one inner face with no tet on either
+            // side (a lone tet collapsed to nothing).  Where the surface
+            // keeps its planes, w never lies in the plane of (v, x, y), and
+            // the position rules refuse this already.
+            if (at_v.on_surface(fv) && at_w.on_surface(fw)) return false;
         }
     return true;
+}
+
+// x lies in the plane through p with normal n, to round-off of `length`
+// (in_plane), or within `tolerance` of it.
+bool near_plane(const Vec3& n, const Vec3& p, const Vec3& x, double length, double tolerance) {
+    return in_plane(n, p, x, length) || std::abs(n.dot(x - p)) <= tolerance * n.norm();
 }
 
 // A surface face's normal before and after a collapse: it keeps its side,
@@ -80,8 +104,9 @@ bool turns_little(const Vec3& before, const Vec3& after, const TopologyRules& ru
 }
 
 // Where v may go along its feature edges: to w, over a feature edge, with
-// the line straight at v (to rules.surface_slope) so that it keeps its
-// shape.  On a curved feature line (rules.on_curved_shape) v may go to w
+// the line straight at v (or v off the chord of its two line neighbours by
+// at most rules.surface_slope times their mean distance) so that it keeps
+// its shape.  On a curved feature line (rules.on_curved_shape) v may go to w
 // when w lies on the line's fitted shape.
 bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double length, const TopologyRules& rules) {
     std::vector<int32_t> around;
@@ -95,8 +120,8 @@ bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double 
     const int32_t u = along[0] == w ? along[1] : along[0];
     const Vec3 d = mesh.point(w) - mesh.point(u);
     const Vec3 off = (mesh.point(v) - mesh.point(u)).cross(d);
-    return off.norm() <= std::max(1e-9, rules.surface_slope) * d.norm() * length &&
-           (mesh.point(v) - mesh.point(u)).dot(d) > 0.0;
+    const double tolerance = rules.surface_slope * std::sqrt(length * 0.5 * ((mesh.point(v) - mesh.point(u)).norm() + length));
+    return off.norm() <= std::max(1e-9 * length, tolerance) * d.norm() && (mesh.point(v) - mesh.point(u)).dot(d) > 0.0;
 }
 
 }  // namespace
@@ -112,6 +137,7 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
     const double length = (mesh.point(w) - mesh.point(v)).norm();
     if (!feature_lines_allow(mesh, v, w, length, rules)) return false;
     if (!link_condition(mesh, v, w, at_v, FacesAt(mesh, w))) return false;
+    const double off_surface = v_on_surface ? rules.surface_slope * std::sqrt(length * at_v.mean_surface_edge(mesh, v)) : 0.0;
 
     // The surface faces at v: w must lie in each one's plane, the renamed
     // face must keep its side, and the faces on each side of a non-feature
@@ -147,7 +173,7 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
                 }
                 const Vec3 n = triangle_normal(mesh.point(a), mesh.point(b), mesh.point(c));
                 const bool on_shape = rules.on_curved_shape && rules.on_curved_shape(mesh, {a, b, c}, mesh.point(w));
-                if (!on_shape && !in_plane(n, mesh.point(v), mesh.point(w), length, rules.surface_slope)) return false;
+                if (!on_shape && !near_plane(n, mesh.point(v), mesh.point(w), length, off_surface)) return false;
                 const Vec3 pa = a == v ? mesh.point(w) : mesh.point(a), pb = b == v ? mesh.point(w) : mesh.point(b),
                            pc = c == v ? mesh.point(w) : mesh.point(c);
                 if (!turns_little(n, triangle_normal(pa, pb, pc), rules)) return false;
@@ -221,6 +247,7 @@ int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRu
     const std::vector<int32_t> star(mesh.tets_of(b));
     const TetLimits limits = limits_for(mesh, star, rules, must_exceed);
     const FacesAt at_b(mesh, b);
+    const double off_surface = rules.surface_slope * std::sqrt(length * at_b.mean_surface_edge(mesh, b));
     mesh.move_vertex(b, mid);
     bool ok = true;
     for (int32_t t : star) {
@@ -234,7 +261,7 @@ int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRu
             const Vec3 n = triangle_normal(f.v[0] == b ? old_b : mesh.point(f.v[0]), f.v[1] == b ? old_b : mesh.point(f.v[1]),
                                            f.v[2] == b ? old_b : mesh.point(f.v[2]));
             const Vec3 moved = triangle_normal(mesh.point(f.v[0]), mesh.point(f.v[1]), mesh.point(f.v[2]));
-            ok = (in_plane(n, old_b, mid, length, rules.surface_slope) && turns_little(n, moved, rules)) ||
+            ok = (near_plane(n, old_b, mid, length, off_surface) && turns_little(n, moved, rules)) ||
                  (rules.on_curved_shape && rules.on_curved_shape(mesh, {f.v[0], f.v[1], f.v[2]}, mid));
         }
     }

@@ -136,8 +136,8 @@ Parents blend_parents(const EditableMesh& mesh, std::initializer_list<int32_t> v
     return merged;
 }
 
-bool in_plane(const Vec3& n, const Vec3& p, const Vec3& x, double length, double slope) {
-    return std::abs(n.dot(x - p)) <= std::max(kFlatTolerance, slope) * n.norm() * length;
+bool in_plane(const Vec3& n, const Vec3& p, const Vec3& x, double length) {
+    return std::abs(n.dot(x - p)) <= kFlatTolerance * n.norm() * length;
 }
 
 }  // namespace bodt

@@ -64,8 +64,8 @@ std::vector<int32_t> origins_of(const EditableMesh& mesh, const std::vector<int3
 Parents blend_parents(const EditableMesh& mesh, std::initializer_list<int32_t> vs, std::initializer_list<double> ws);
 
 // x lies in the plane through p with normal n (not unit), to round-off of
-// the mesh's scale `length`, or within slope * length of it.
-bool in_plane(const Vec3& n, const Vec3& p, const Vec3& x, double length, double slope = 0.0);
+// the mesh's scale `length`.
+bool in_plane(const Vec3& n, const Vec3& p, const Vec3& x, double length);
 
 // The outward normal (not unit) of face (a, b, c).
 inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a).cross(c - a); }
