@@ -173,15 +173,6 @@ TetMesh written(const EditableMesh& em) {
 
 // ----------------------------------------------------------- measurements
 
-double total_volume(const TetMesh& m) {
-    double v = 0.0;
-    for (int32_t t = 0; t < m.num_tets(); ++t) {
-        const auto p = m.tet_points(t);
-        v += bodt::signed_volume(p[0], p[1], p[2], p[3]);
-    }
-    return v;
-}
-
 int32_t count_not_positive(const TetMesh& m) {
     int32_t n = 0;
     for (int32_t t = 0; t < m.num_tets(); ++t) n += !(bodt::stretch(m.tet_points(t)) > 0.0);

@@ -2523,15 +2523,6 @@ double least_turn_cosine(const TetMesh& m, int32_t v, const Vec3& x) {
     return least;
 }
 
-double volume_of(const TetMesh& m) {
-    double v = 0.0;
-    for (int32_t t = 0; t < m.num_tets(); ++t) {
-        const auto p = m.tet_points(t);
-        v += bodt::signed_volume(p[0], p[1], p[2], p[3]);
-    }
-    return v;
-}
-
 double boundary_area_at(const TetMesh& m, int32_t v) {
     double a = 0.0;
     for (const auto& f : boundary_faces_at(m, v)) a += 0.5 * (f[1] - f[0]).cross(f[2] - f[0]).norm();
@@ -2575,7 +2566,7 @@ void test_collapse_curved(void**) {
                 pull_on_dome(in, v, w, pull, kBulge);
                 const Case c = make_case(in);
                 const Reference ref = reference_of(c);
-                const double volume = volume_of(c.mesh);
+                const double volume = total_volume(c.mesh);
                 for (int32_t u : around) {
                     if (pull == 1.0 && u != w) continue;  // the same as (v, u) unpulled
                     const double bend = bend_of(c.mesh, v, c.mesh.points[u]);
@@ -2597,7 +2588,7 @@ void test_collapse_curved(void**) {
                         CHECK(turn >= std::sqrt(1.0 - slope * slope), "a face turned by %.2f degrees",
                               std::acos(turn) * kDeg);
                         const TetMesh out = check_valid(em, ref, what, false);
-                        const double moved = std::fabs(volume_of(out) - volume);
+                        const double moved = std::fabs(total_volume(out) - volume);
                         const double bound =
                             slope * collapse_scale(c.mesh, v, c.mesh.points[u]) * boundary_area_at(c.mesh, v);
                         CHECK(moved <= bound, "the volume moved by %g, more than %g", moved, bound);
@@ -2646,7 +2637,7 @@ void test_collapse_curved_pass(void**) {
         const TetMesh out = check_valid(em, ref, what, k == 0);
         after[k] = worst_sine(out);
         if (k == 1) {
-            const double moved = std::fabs(volume_of(out) - volume_of(c.mesh));
+            const double moved = std::fabs(total_volume(out) - total_volume(c.mesh));
             CHECK(moved <= 0.1 * collapse_scale(c.mesh, v, c.mesh.points[w]) * boundary_area_at(c.mesh, v) + 1e-15,
                   "the volume moved by %g", moved);
         }

@@ -17,10 +17,8 @@ namespace bodt {
 
 namespace {
 
-// TopologyRules::surface_slope in the modes whose surface may change: a
-// collapse may take the surface off a face's plane by a tenth of sqrt(L h)
-// (L its edge's length, h the size of the faces around), and turn no face
-// by more than asin 0.1 (about 6 degrees).
+// TopologyRules::surface_slope (operations.hpp) in the modes whose surface
+// may change.
 constexpr double kCurvedCollapseSlope = 0.1;
 
 void require_finite(const std::vector<Vec3>& points) {
@@ -279,9 +277,7 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     settings.rules.surface_may_change =
         params_.keep_surface == 0 && (mode_ == BODT_MODE_BODT || mode_ == BODT_MODE_BODT_BASIC);
     // Where the surface may change, a short surface edge on a curved part
-    // may go (operations.hpp): the B-ODT sweep moves its vertices in their
-    // tangent planes, which bends the surface as much, and such an edge
-    // leaves flat tets that no smoothing or insertion breaks.
+    // may go: it leaves flat tets that no smoothing or insertion breaks.
     if (settings.rules.surface_may_change) settings.rules.surface_slope = kCurvedCollapseSlope;
     const bool paper_001 = mode_ == BODT_MODE_OPT_WEIGHTED;
     settings.rules.min_stretch = params_.min_stretch;

@@ -100,7 +100,8 @@ bool near_plane(const Vec3& n, const Vec3& p, const Vec3& x, double length, doub
 // and within rules.surface_slope turns by at most asin(surface_slope).
 bool turns_little(const Vec3& before, const Vec3& after, const TopologyRules& rules) {
     const double slope = std::min(rules.surface_slope, 1.0);
-    return after.dot(before) > std::sqrt(1.0 - slope * slope) * after.norm() * before.norm() * (slope > 0.0);
+    const double least_cosine = slope > 0.0 ? std::sqrt(1.0 - slope * slope) : 0.0;
+    return after.dot(before) > least_cosine * after.norm() * before.norm();
 }
 
 // Where v may go along its feature edges: to w, over a feature edge, with
@@ -139,8 +140,9 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
     if (!link_condition(mesh, v, w, at_v, FacesAt(mesh, w))) return false;
     const double off_surface = v_on_surface ? rules.surface_slope * std::sqrt(length * at_v.mean_surface_edge(mesh, v)) : 0.0;
 
-    // The surface faces at v: w must lie in each one's plane, the renamed
-    // face must keep its side, and the faces on each side of a non-feature
+    // The surface faces at v: w must lie in each one's plane (or within
+    // off_surface of it), the renamed face must keep its side (and turn
+    // little), and the faces on each side of a non-feature
     // edge at v must carry one marker (so markers change only across
     // feature edges, whose lines stay where they are).
     struct Renamed {

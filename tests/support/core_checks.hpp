@@ -24,6 +24,16 @@ struct Rng {
     bodt::Vec3 point(double lo, double hi) { return bodt::Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)); }
 };
 
+// The sum of the tets' signed volumes.
+inline double total_volume(const bodt::TetMesh& m) {
+    double v = 0.0;
+    for (int32_t t = 0; t < m.num_tets(); ++t) {
+        const auto p = m.tet_points(t);
+        v += bodt::signed_volume(p[0], p[1], p[2], p[3]);
+    }
+    return v;
+}
+
 // The arrays of a generated mesh, as the C API passes them to build_mesh.
 inline bodt::MeshArrays mesh_arrays(const test_mesh& m) {
     bodt::MeshArrays a;
