@@ -460,7 +460,9 @@ enum bodt_param {
     /* int 0/1, default 0: 1 keeps every boundary and interface triangle as
      * it is (no split, flip or collapse there); only BODT_MODE_BODT_BASIC
      * and BODT_MODE_BODT change them otherwise: flips retriangulate flat
-     * parts of the surface only, with their markers, splits put new
+     * parts of the surface only, with their markers, or take out a tet
+     * lying flat on the surface by two faces when neither face it
+     * uncovers turns by more than about 6 degrees, splits put new
      * vertices on the split edge or face, and a collapse of a surface edge
      * of length L (BODT_OP_COLLAPSE) may move the surface off the faces
      * around it by at most 0.1 sqrt(L h), h the mean length of the surface
@@ -546,7 +548,10 @@ enum bodt_op {
                              sec. 2.3), conforming: every tet on the split
                              edge or face is split; else, in a bad tet with
                              an interior vertex, insert its circumcentre
-                             (Bowyer-Watson, within its region)             */
+                             (Bowyer-Watson, within its region), and in one
+                             with its four vertices on the boundary (and no
+                             short edge), split an edge through the inside
+                             at its midpoint                                */
     BODT_OP_COLLAPSE = 8  /* collapse the shortest edge of a bad tet with a
                              short edge (paper 002 sec. 3.5.1 position
                              rules; on the surface see

@@ -909,6 +909,76 @@ void test_boundary_2_2(void**) {
     }
 }
 
+// A flat tet (a, b, c, d) = (2, 3, 0, 1) lying on the surface by two faces,
+// (a, b, c) and (a, b, d): the square c a d b, its diagonal a b lifted by
+// `lift` above c d, over an apex e = 4 below.  Tets (a, b, c, d),
+// (a, c, d, e), (b, c, d, e); the top faces carry `marker_c` and `marker_d`.
+Input folded_square(double lift, int32_t marker_c, int32_t marker_d) {
+    Input in;
+    in.points = {Vec3(0, -1, 0), Vec3(0, 1, 0), Vec3(-1, 0, lift), Vec3(1, 0, lift), Vec3(0, 0, -1)};
+    add_tet(in, 2, 3, 0, 1);
+    add_tet(in, 2, 0, 1, 4);
+    add_tet(in, 3, 0, 1, 4);
+    in.markers = {{FaceKey::of(2, 3, 0), marker_c}, {FaceKey::of(2, 3, 1), marker_d}};
+    return in;
+}
+
+// Edge removal of a surface edge in one tet takes the tet out, where it is
+// flat along the surface (each new surface face within asin(surface_slope)
+// of the old one); the two faces it uncovers take the marker.  Refused
+// without a slope, where the fold is sharper, between two markers and on a
+// feature edge.
+void test_remove_surface_tet(void**) {
+    const char* what = "surface tet removal";
+    TopologyRules rules = loose_rules();
+    rules.surface_slope = 0.1;
+    {
+        const Case c = make_case(folded_square(0.05, 4, 4));  // each face turns by 4 degrees
+        const Reference ref = reference_of(c);
+        const double before = total_volume(c.mesh);
+        EditableMesh em(c.mesh, c.classes);
+        assert_true(bodt::remove_edge(em, 2, 3, rules, 0.0));
+        const TetMesh m = check_valid(em, ref, what, false);
+        assert_int_equal(m.num_tets(), 2);
+        assert_false(has_edge(m, 2, 3));
+        assert_int_equal(m.face_markers.size(), 2);
+        assert_int_equal(m.face_markers.at(FaceKey::of(2, 0, 1)), 4);
+        assert_int_equal(m.face_markers.at(FaceKey::of(3, 0, 1)), 4);
+        // the volume lost is the flat tet's: 2 * 2 * lift / 6
+        CHECK(std::fabs(before - total_volume(m) - 4.0 * 0.05 / 6.0) < 1e-12, "volume %.17g -> %.17g", before,
+              total_volume(m));
+    }
+    {
+        const Case c = make_case(folded_square(0.05, 4, 4));
+        EditableMesh em(c.mesh, c.classes);
+        expect_refused(em, "surface tet removal without a slope", [&] { return bodt::remove_edge(em, 2, 3, loose_rules(), 0.0); });
+        TopologyRules keep = rules;
+        keep.surface_may_change = false;
+        expect_refused(em, "surface tet removal with a fixed surface", [&] { return bodt::remove_edge(em, 2, 3, keep, 0.0); });
+    }
+    {
+        // each face turns by 16 degrees, past asin 0.1 = 5.7
+        const Case c = make_case(folded_square(0.2, 4, 4));
+        EditableMesh em(c.mesh, c.classes);
+        expect_refused(em, "surface tet removal of a sharp fold", [&] { return bodt::remove_edge(em, 2, 3, rules, 0.0); });
+        TopologyRules steep = rules;
+        steep.surface_slope = 0.3;  // asin 0.3 = 17.5 degrees
+        assert_true(bodt::remove_edge(em, 2, 3, steep, 0.0));
+    }
+    {
+        const Case c = make_case(folded_square(0.05, 4, 5));
+        EditableMesh em(c.mesh, c.classes);
+        expect_refused(em, "surface tet removal between markers", [&] { return bodt::remove_edge(em, 2, 3, rules, 0.0); });
+    }
+    {
+        Input in = folded_square(0.05, 4, 4);
+        in.features = {{2, 3}};
+        const Case c = make_case(in);
+        EditableMesh em(c.mesh, c.classes);
+        expect_refused(em, "surface tet removal of a feature edge", [&] { return bodt::remove_edge(em, 2, 3, rules, 0.0); });
+    }
+}
+
 // ------------------------------------------------------------------ splits
 
 // A Kuhn box n^3 of [0, 1]^3 with interior jitter, each side its own marker.
@@ -1754,6 +1824,49 @@ void test_insertion(void**) {
         // the improvement is committed
         CHECK(em.checkpoint() == 0, "journal left with %zu entries", em.checkpoint());
     }
+}
+
+// The pass splits an edge through the inside of a bad tet whose four
+// vertices lie on the boundary and which no other insertion mends: the
+// folded square with its surface kept, where the sliver's split of (a, b)
+// would change the surface.  The new vertex, at the middle of (c, d), moves
+// (here to the mean of its neighbours, a target the test can foresee) to
+// below the square and the worst angle goes up.  Without insertion the tet
+// stays.
+void test_inner_edge_split(void**) {
+    const char* what = "inner edge split";
+    const Case c = make_case(folded_square(0.05, 4, 4));
+    const Reference ref = reference_of(c);
+    const double before = worst_angle(c.mesh);
+    EditableMesh em(c.mesh, c.classes);
+    bodt::TopologySettings s;
+    s.rules = loose_rules();
+    s.rules.surface_may_change = false;
+    s.flip = false;
+    s.insert = true;
+    s.relocate_old = false;
+    s.relocation_target = [](const EditableMesh& mesh, int32_t v, Vec3& target) {
+        std::vector<int32_t> around;
+        mesh.neighbors(v, around);
+        target = Vec3::Zero();
+        for (int32_t u : around) target += mesh.point(u) / static_cast<double>(around.size());
+        return !around.empty();
+    };
+    const bodt::TopologyCounts counts = bodt::improve_topology(em, s);
+    const TetMesh out = check_valid(em, ref, what);
+    const double after = worst_angle(out);
+    print_message("inner edge split: %d vertices inserted, worst angle %.2f -> %.2f degrees\n", counts.inserted, before,
+                  after);
+    CHECK(counts.inserted == 1, "%d vertices inserted", counts.inserted);
+    CHECK(out.num_tets() == 6, "%d tets", out.num_tets());
+    CHECK(after > before + 1.0, "worst angle %g -> %g", before, after);
+    const Vec3& fresh = out.points[out.num_input_vertices()];
+    CHECK(std::fabs(fresh.x()) < 1e-12 && std::fabs(fresh.y()) < 1e-12 && fresh.z() < -0.1, "new vertex at (%g, %g, %g)", fresh.x(), fresh.y(),
+          fresh.z());
+    // without the insertion the tet stays
+    EditableMesh kept(c.mesh, c.classes);
+    s.insert = false;
+    CHECK(!bodt::improve_topology(kept, s).changed(), "changed without insertion");
 }
 
 // Inserting a point into its cavity (Bowyer-Watson within a region):
@@ -2657,6 +2770,7 @@ int main(void) {
         cmocka_unit_test(test_remove_edge_4_4),
         cmocka_unit_test(test_remove_edge_optimal),
         cmocka_unit_test(test_boundary_2_2),
+        cmocka_unit_test(test_remove_surface_tet),
         cmocka_unit_test(test_split_edge),
         cmocka_unit_test(test_split_face),
         cmocka_unit_test(test_parents_compose),
@@ -2667,6 +2781,7 @@ int main(void) {
         cmocka_unit_test(test_min_dihedral_sine),
         cmocka_unit_test(test_classify_bad_tet),
         cmocka_unit_test(test_insertion),
+        cmocka_unit_test(test_inner_edge_split),
         cmocka_unit_test(test_flip_pass),
         cmocka_unit_test(test_collapse_pass),
         cmocka_unit_test(test_collapse_curved),

@@ -19,7 +19,7 @@ namespace {
 
 // TopologyRules::surface_slope (operations.hpp) in the modes whose surface
 // may change.
-constexpr double kCurvedCollapseSlope = 0.1;
+constexpr double kSurfaceSlope = 0.1;
 
 void require_finite(const std::vector<Vec3>& points) {
     for (const Vec3& p : points)
@@ -277,8 +277,9 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     settings.rules.surface_may_change =
         params_.keep_surface == 0 && (mode_ == BODT_MODE_BODT || mode_ == BODT_MODE_BODT_BASIC);
     // Where the surface may change, a short surface edge on a curved part
-    // may go: it leaves flat tets that no smoothing or insertion breaks.
-    if (settings.rules.surface_may_change) settings.rules.surface_slope = kCurvedCollapseSlope;
+    // may go, and a tet lying flat on the surface may be taken out: both
+    // leave flat tets that no smoothing or insertion breaks.
+    if (settings.rules.surface_may_change) settings.rules.surface_slope = kSurfaceSlope;
     const bool paper_001 = mode_ == BODT_MODE_OPT_WEIGHTED;
     settings.rules.min_stretch = params_.min_stretch;
     settings.rules.never_worse = params_.never_worse != 0;

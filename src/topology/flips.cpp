@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 
 namespace bodt {
@@ -89,6 +90,45 @@ bool fits_cavity(const EditableMesh& mesh, const std::vector<int32_t>& old_tets,
     return true;
 }
 
+// A surface edge (a, b) in one tet (a, b, c, d): the tet lies on the
+// surface by two faces, (a, b, c) and (a, b, d), and its removal puts
+// (a, c, d) and (b, c, d) there instead -- the surface's 2-2 flip with the
+// tet between the two diagonals taken out.  Kept only where the tet is flat
+// along the surface: obtuse at (a, b) and at (c, d), and at its four other
+// edges, where an old surface face meets a new one, each new face turned
+// from the old by an angle whose sine is at most rules.surface_slope (the
+// turn an edge collapse may make), so the surface moves by at most that
+// times the faces' size.
+bool remove_surface_tet(EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing& r, const TopologyRules& rules) {
+    if (!(rules.surface_slope > 0.0)) return false;
+    const int32_t t = r.tets.front(), c = r.ring.front(), d = r.ring.back();
+    if (mesh.is_surface_edge(c, d)) return false;  // it would border four surface faces
+    const FaceKey inner[2] = {FaceKey::of(a, c, d), FaceKey::of(b, c, d)};
+    for (const FaceKey& f : inner) {
+        int32_t pair[2];
+        if (mesh.face_tets(f, pair) != 2 || mesh.region(pair[0]) != mesh.region(pair[1]) || mesh.has_marker(f))
+            return false;
+    }
+    const Tet& q = mesh.tet(t);
+    const auto cosines = dihedral_cosines(mesh.tet_points(t));
+    const double least_turn_cosine = std::sqrt(1.0 - rules.surface_slope * rules.surface_slope);
+    for (int e = 0; e < 6; ++e) {
+        const int32_t x = q[kEdgeVertex[e][0]], y = q[kEdgeVertex[e][1]];
+        const bool diagonal = (x == a || x == b) == (y == a || y == b);  // (a, b) or (c, d)
+        if (diagonal ? !(cosines[e] < 0.0) : !(cosines[e] >= least_turn_cosine)) return false;
+    }
+    const FaceKey f0 = FaceKey::of(a, b, c), f1 = FaceKey::of(a, b, d);
+    const bool marked = mesh.has_marker(f0);
+    const int32_t marker = mesh.marker(f0);
+    mesh.remove_tet(t);
+    if (marked) {
+        mesh.erase_marker(f0);
+        mesh.erase_marker(f1);
+        for (const FaceKey& f : inner) mesh.set_marker(f, marker);
+    }
+    return true;
+}
+
 }  // namespace
 
 bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& rules, double must_exceed) {
@@ -99,15 +139,16 @@ bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& 
 bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing& r, const TopologyRules& rules,
                  double must_exceed) {
     const int n = static_cast<int>(r.ring.size());  // polygon vertices
-    if (n > kMaxEdgeRing || n < 3 || !one_region(mesh, r.tets)) return false;
+    if (n > kMaxEdgeRing || n < 2 || (r.closed && n < 3) || !one_region(mesh, r.tets)) return false;
     if (!r.closed && (!rules.surface_may_change || mesh.is_feature_edge(a, b))) return false;
     const FaceKey f0 = FaceKey::of(a, b, r.ring.front()), f1 = FaceKey::of(a, b, r.ring.back());
+    if (!r.closed && mesh.marker(f0) != mesh.marker(f1)) return false;
+    if (n == 2) return remove_surface_tet(mesh, a, b, r, rules);
     if (!r.closed) {
         // The edge lies on the surface; its two surface faces (a, b, ring[0])
         // and (a, b, ring[n-1]) become (a, ring[n-1], ring[0]) and (b, ...):
         // only in one plane, with one marker.  Tested first: most surface
         // edges fail it, and the triangulation costs more.
-        if (mesh.marker(f0) != mesh.marker(f1)) return false;
         const Vec3& pa = mesh.point(a);
         const Vec3 nrm = triangle_normal(pa, mesh.point(b), mesh.point(r.ring.front()));
         const double length = (mesh.point(b) - pa).norm() + (mesh.point(r.ring.back()) - pa).norm();

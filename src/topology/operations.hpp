@@ -49,7 +49,9 @@ struct TopologyRules {
     // moves the surface by about L times the tilt of the faces around it.
     // Bounded by L alone, a short edge among faces tilted more than 6
     // degrees stayed; by h alone, `part1.p` moved its boundary by 1.8 % of
-    // its size.
+    // its size.  The same bound lets edge removal take out a tet lying flat
+    // on the surface by two faces: each face it uncovers is turned by at
+    // most asin of it from the face it replaces.
     double surface_slope = 0.0;
 };
 
@@ -60,7 +62,9 @@ inline constexpr int kMaxEdgeRing = 7;
 // or 2k - 2 (an edge on a flat part of the surface), the ring's polygon
 // triangulated to maximise the worst new tet (dynamic programming over the
 // polygon, Klincsek's O(k^3)).  k = 3 is the 3-2 flip, k = 4 the 4-4 flip,
-// and a surface edge with k = 2 the 2-2 flip.
+// and a surface edge with k = 2 the 2-2 flip.  A surface edge in k = 1 tet
+// takes that tet out where it is flat along the surface (see
+// TopologyRules::surface_slope): its other two faces go on the surface.
 bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& rules, double must_exceed);
 // The same with the edge's ring known (mesh.edge_ring(a, b, ring) held).
 bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing& ring, const TopologyRules& rules,

@@ -136,6 +136,18 @@ bool has_interior_vertex(const EditableMesh& mesh, int32_t t) {
     return false;
 }
 
+// The edges of tet t through the inside (not on the surface), longest
+// first, as vertex pairs.
+std::vector<std::array<int32_t, 2>> inner_edges(const EditableMesh& mesh, int32_t t) {
+    const Tet q = mesh.tet(t);
+    std::vector<std::array<int32_t, 2>> out;
+    for (const auto& e : kEdgeVertex)
+        if (!mesh.is_surface_edge(q[e[0]], q[e[1]])) out.push_back({q[e[0]], q[e[1]]});
+    const auto length = [&](const std::array<int32_t, 2>& e) { return (mesh.point(e[1]) - mesh.point(e[0])).squaredNorm(); };
+    std::sort(out.begin(), out.end(), [&](const auto& x, const auto& y) { return length(x) > length(y); });
+    return out;
+}
+
 // Worst tets first, so that a fix is not spent on a tet a neighbour's fix
 // would have removed anyway.
 std::vector<int32_t> bad_tets_by_quality(const EditableMesh& mesh, double bad_sine) {
@@ -376,8 +388,27 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
                 unrefined.push_back(quad);
                 return false;
             };
-            if ((shaped && insert([&] { return insert_for(mesh, t, bad, loose); })) ||
-                (has_interior_vertex(mesh, t) && refine()))
+            // A tet whose four vertices lie on the boundary cannot be mended
+            // by moving them: an edge of it through the inside, split at
+            // its midpoint, gives it an interior vertex that the relocation
+            // in try_change moves.  Tried once while the tet stands, as the
+            // circumcentre: tried again every step, the splits doubled the
+            // time of the coarse `-p` meshes' steps.
+            const auto split_inner = [&] {
+                if (!unrefinable)
+                    for (const auto& e : inner_edges(mesh, t))
+                        if (insert([&] {
+                                const Vec3 mid = 0.5 * (mesh.point(e[0]) + mesh.point(e[1]));
+                                const int32_t v = split_edge(mesh, e[0], e[1], mid, loose, 0.0);
+                                return v >= 0 ? std::vector<int32_t>{v} : std::vector<int32_t>{};
+                            }))
+                            return true;
+                unrefined.push_back(quad);
+                return false;
+            };
+            const bool inner = has_interior_vertex(mesh, t);
+            if ((shaped && insert([&] { return insert_for(mesh, t, bad, loose); })) || (inner && refine()) ||
+                (!inner && split_inner()))
                 counts.inserted += made;
             else
                 failed.tets.failed(mesh, t, StuckTets::kInsertion);

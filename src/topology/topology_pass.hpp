@@ -46,9 +46,10 @@ struct FailedAttempts {
     FailedFlips flips;
     StuckTets tets;
     // The bad tets (sorted vertex quads, ascending) whose circumcentre
-    // refinement failed: not tried again while the tet stands, even if its
-    // vertices moved (a failed insertion costs as much as the rest of a
-    // step's pass).  Each pass keeps only those of its own bad tets.
+    // refinement or inner-edge split failed: not tried again while the tet
+    // stands, even if its vertices moved (a failed insertion costs as much
+    // as the rest of a step's pass).  Each pass keeps only those of its own
+    // bad tets.
     std::vector<Tet> unrefined;
 
     // Starts a pass over `mesh`; see FailedFlips and StuckTets.
