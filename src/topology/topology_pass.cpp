@@ -21,10 +21,11 @@ constexpr int kOdtRelocationRounds = 3;
 
 // One guarded move of vertex v to the settings' relocation target, halved
 // until no tet of its star ends worse than the star's worst before.
-void relocate(EditableMesh& mesh, int32_t v, const TopologySettings& s) {
+// Returns whether v moved.
+bool relocate(EditableMesh& mesh, int32_t v, const TopologySettings& s) {
     Vec3 target;
-    if (!(s.relocation_target ? s.relocation_target(mesh, v, target) : odt_target(mesh, v, target))) return;
-    if (!target.allFinite()) return;
+    if (!(s.relocation_target ? s.relocation_target(mesh, v, target) : odt_target(mesh, v, target))) return false;
+    if (!target.allFinite()) return false;
     const std::vector<int32_t> star(mesh.tets_of(v));
     const Vec3 start = mesh.point(v);
     const TetLimits limits = limits_for(mesh, star, s.rules, worst_sine(mesh, star));
@@ -32,9 +33,10 @@ void relocate(EditableMesh& mesh, int32_t v, const TopologySettings& s) {
         mesh.move_vertex(v, start + f * (target - start));
         bool ok = true;
         for (int32_t t : star) ok = ok && acceptable_tet(mesh.tet_points(t), limits);
-        if (ok) return;
+        if (ok) return true;
     }
     mesh.move_vertex(v, start);
+    return false;
 }
 
 // Tries one edge removal or 2-3 flip among the edges and faces of t that
@@ -216,10 +218,13 @@ bool try_change(EditableMesh& mesh, int32_t t, const TopologySettings& settings,
             return false;
         }
     }
+    // A round in which no vertex moved leaves the next one the same start.
     const int rounds = settings.relocation_target ? 1 : kOdtRelocationRounds;
-    for (int round = 0; round < rounds; ++round)
+    for (int round = 0, moved = 1; round < rounds && moved; ++round) {
+        moved = 0;
         for (int32_t v : movers)
-            if (!mesh.tets_of(v).empty()) relocate(mesh, v, settings);
+            if (!mesh.tets_of(v).empty()) moved |= relocate(mesh, v, settings);
+    }
     // A tet changed if it is gone, new, or has moved.
     double before = 1.0, after = 1.0;
     CosineRange range_before{-1.0, 1.0}, range_after{-1.0, 1.0};
