@@ -131,7 +131,7 @@ Tet sorted(Tet q) {
 // whose four vertices all lie on the boundary is flat against it, its
 // circumcentre outside the region or far from the tet (the plan fails,
 // after a costly walk), and is left to the flips, which may change the
-// surface's triangulation.
+// surface's triangulation, and to the split of an inner edge.
 bool has_interior_vertex(const EditableMesh& mesh, int32_t t) {
     for (int32_t v : mesh.tet(t))
         if (mesh.vertex_class(v) == VertexClass::Interior) return true;
