@@ -1831,8 +1831,8 @@ void test_insertion(void**) {
 // folded square with its surface kept, where the sliver's split of (a, b)
 // would change the surface.  The new vertex, at the middle of (c, d), moves
 // (here to the mean of its neighbours, a target the test can foresee) to
-// below the square and the worst angle goes up.  Without insertion the tet
-// stays.
+// below the square and the worst angle goes up.  Recorded as failed in an
+// earlier pass, the tet is left alone.
 void test_inner_edge_split(void**) {
     const char* what = "inner edge split";
     const Case c = make_case(folded_square(0.05, 4, 4));
@@ -1863,10 +1863,20 @@ void test_inner_edge_split(void**) {
     const Vec3& fresh = out.points[out.num_input_vertices()];
     CHECK(std::fabs(fresh.x()) < 1e-12 && std::fabs(fresh.y()) < 1e-12 && fresh.z() < -0.1, "new vertex at (%g, %g, %g)", fresh.x(), fresh.y(),
           fresh.z());
-    // without the insertion the tet stays
+    // A tet whose insertion failed in an earlier pass (failed.unrefined) is
+    // not split again while it stands, and stays recorded.
+    Tet flat{};
+    for (Tet q : c.mesh.tets) {
+        std::sort(q.begin(), q.end());
+        if (q == Tet{0, 1, 2, 3}) flat = q;
+    }
+    assert_true(flat[3] == 3);
     EditableMesh kept(c.mesh, c.classes);
-    s.insert = false;
-    CHECK(!bodt::improve_topology(kept, s).changed(), "changed without insertion");
+    bodt::FailedAttempts failed;
+    failed.begin_pass(kept, nullptr);
+    failed.unrefined = {flat};
+    CHECK(!bodt::improve_topology(kept, s, failed).changed(), "split again");
+    CHECK(failed.unrefined.size() == 1 && failed.unrefined[0] == flat, "%zu tets recorded", failed.unrefined.size());
 }
 
 // Inserting a point into its cavity (Bowyer-Watson within a region):

@@ -99,9 +99,7 @@ bool near_plane(const Vec3& n, const Vec3& p, const Vec3& x, double length, doub
 // A surface face's normal before and after a collapse: it keeps its side,
 // and within rules.surface_slope turns by at most asin(surface_slope).
 bool turns_little(const Vec3& before, const Vec3& after, const TopologyRules& rules) {
-    const double slope = std::min(rules.surface_slope, 1.0);
-    const double least_cosine = slope > 0.0 ? std::sqrt(1.0 - slope * slope) : 0.0;
-    return after.dot(before) > least_cosine * after.norm() * before.norm();
+    return after.dot(before) > least_turn_cosine(rules) * after.norm() * before.norm();
 }
 
 // Where v may go along its feature edges: to w, over a feature edge, with

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <limits>
 
 namespace bodt {
@@ -111,11 +110,11 @@ bool remove_surface_tet(EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing
     }
     const Tet& q = mesh.tet(t);
     const auto cosines = dihedral_cosines(mesh.tet_points(t));
-    const double least_turn_cosine = std::sqrt(1.0 - rules.surface_slope * rules.surface_slope);
+    const double least_cosine = least_turn_cosine(rules);
     for (int e = 0; e < 6; ++e) {
         const int32_t x = q[kEdgeVertex[e][0]], y = q[kEdgeVertex[e][1]];
         const bool diagonal = (x == a || x == b) == (y == a || y == b);  // (a, b) or (c, d)
-        if (diagonal ? !(cosines[e] < 0.0) : !(cosines[e] >= least_turn_cosine)) return false;
+        if (diagonal ? !(cosines[e] < 0.0) : !(cosines[e] >= least_cosine)) return false;
     }
     const FaceKey f0 = FaceKey::of(a, b, c), f1 = FaceKey::of(a, b, d);
     const bool marked = mesh.has_marker(f0);

@@ -1,6 +1,7 @@
 #include "topology/op_support.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace bodt {
@@ -134,6 +135,11 @@ Parents blend_parents(const EditableMesh& mesh, std::initializer_list<int32_t> v
         else merged.push_back(p);
     }
     return merged;
+}
+
+double least_turn_cosine(const TopologyRules& rules) {
+    const double slope = std::min(rules.surface_slope, 1.0);
+    return slope > 0.0 ? std::sqrt(1.0 - slope * slope) : 0.0;
 }
 
 bool in_plane(const Vec3& n, const Vec3& p, const Vec3& x, double length) {

@@ -67,6 +67,12 @@ Parents blend_parents(const EditableMesh& mesh, std::initializer_list<int32_t> v
 // the mesh's scale `length`.
 bool in_plane(const Vec3& n, const Vec3& p, const Vec3& x, double length);
 
+// The least cosine between a surface face's normal before and after a
+// change that may bend the surface (TopologyRules::surface_slope): the
+// face turns by at most asin(surface_slope); 0 without a slope (the face
+// only keeps its side).
+double least_turn_cosine(const TopologyRules& rules);
+
 // The outward normal (not unit) of face (a, b, c).
 inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a).cross(c - a); }
 

@@ -122,6 +122,10 @@ std::vector<int32_t> insert_for(EditableMesh& mesh, int32_t t, const BadTet& bad
     return made;
 }
 
+// What a change that makes or keeps one vertex v (-1: refused) hands to
+// try_change.
+std::vector<int32_t> made_vertex(int32_t v) { return v >= 0 ? std::vector<int32_t>{v} : std::vector<int32_t>{}; }
+
 Tet sorted(Tet q) {
     std::sort(q.begin(), q.end());
     return q;
@@ -362,8 +366,7 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
                         shortest = e;
                 const Tet q = mesh.tet(t);
                 if (try_change(mesh, t, s, [&] {
-                        const int32_t kept = collapse_edge(mesh, q[kEdgeVertex[shortest][0]], q[kEdgeVertex[shortest][1]], loose, 0.0);
-                        return kept >= 0 ? std::vector<int32_t>{kept} : std::vector<int32_t>{};
+                        return made_vertex(collapse_edge(mesh, q[kEdgeVertex[shortest][0]], q[kEdgeVertex[shortest][1]], loose, 0.0));
                     })) {
                     ++counts.collapsed;
                     continue;
@@ -384,10 +387,7 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
             const auto refine = [&] {
                 if (!unrefinable) {
                     const CavityPlan plan = plan_cavity(mesh, t, circumcenter(p), loose, 0.0);
-                    if (plan.valid() && insert([&] {
-                            const int32_t v = insert_planned(mesh, plan);
-                            return v >= 0 ? std::vector<int32_t>{v} : std::vector<int32_t>{};
-                        }))
+                    if (plan.valid() && insert([&] { return made_vertex(insert_planned(mesh, plan)); }))
                         return true;
                 }
                 unrefined.push_back(quad);
@@ -404,8 +404,7 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
                     for (const auto& e : inner_edges(mesh, t))
                         if (insert([&] {
                                 const Vec3 mid = 0.5 * (mesh.point(e[0]) + mesh.point(e[1]));
-                                const int32_t v = split_edge(mesh, e[0], e[1], mid, loose, 0.0);
-                                return v >= 0 ? std::vector<int32_t>{v} : std::vector<int32_t>{};
+                                return made_vertex(split_edge(mesh, e[0], e[1], mid, loose, 0.0));
                             }))
                             return true;
                 unrefined.push_back(quad);
