@@ -55,11 +55,15 @@ bool MoveGuard::acceptable(const TetMesh& mesh, const Vec3& at, const std::vecto
     const Coords x = coords(at);
     for (size_t k = 0; k < surface_faces.size(); ++k)
         if (!(face_normal(mesh, surface_faces[k]).dot(normals_[k]) > 0.0)) return false;
-    // The tets that held the star's extreme angles fail most often: first.
-    for (const size_t k : extreme_)
-        if (!tet_passes(k, x)) return false;
-    // A shorter move mostly fails where the longer one did: that tet next.
+    // A shorter move mostly fails where the longer one did: that tet first;
+    // then the tets that held the star's extreme angles, which fail most
+    // often otherwise.  The order changes no verdict, only its cost.
     if (last_failed_ < star_.size() && !tet_passes(last_failed_, x)) return false;
+    for (const size_t k : extreme_)
+        if (k != last_failed_ && !tet_passes(k, x)) {
+            last_failed_ = k;
+            return false;
+        }
     const size_t first = first_failing(star_.opposite(), star_.at(), star_.size(), x, floor_.data(), star_before_,
                                        settings_.never_worse, after_.data(), failed_.data());
     if (first == star_.size()) return true;

@@ -203,7 +203,12 @@ bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing& r, co
 
 bool flip_23(EditableMesh& mesh, const FaceKey& face, const TopologyRules& rules, double must_exceed) {
     int32_t t[2];
-    if (mesh.face_tets(face, t) != 2 || mesh.region(t[0]) != mesh.region(t[1])) return false;
+    return mesh.face_tets(face, t) == 2 && flip_23(mesh, face, t, rules, must_exceed);
+}
+
+bool flip_23(EditableMesh& mesh, const FaceKey& face, const int32_t t[2], const TopologyRules& rules,
+             double must_exceed) {
+    if (mesh.region(t[0]) != mesh.region(t[1])) return false;
     // The face as seen out of t[0], and the two apexes.
     const Tet& q0 = mesh.tet(t[0]);
     int i0 = 0;

@@ -21,8 +21,11 @@ double sine_floor(const TopologyRules& rules, double must_exceed) {
 TetLimits limits_for(const EditableMesh& mesh, const std::vector<int32_t>& replaced, const TopologyRules& rules,
                      double must_exceed) {
     TetLimits limits{sine_floor(rules, must_exceed), rules.min_stretch, rules.never_worse, {-1.0, 1.0}};
-    for (int32_t t : replaced) limits.stretch_floor = std::min(limits.stretch_floor, stretch(mesh.tet_points(t)));
-    if (rules.never_worse) limits.range = cosine_range(mesh, replaced);
+    for (int32_t t : replaced) {
+        const TetShape shape = tet_shape(mesh.tet_points(t));  // one kernel for both limits
+        limits.stretch_floor = std::min(limits.stretch_floor, shape.stretch);
+        if (rules.never_worse) widen(limits.range, shape.cosines);
+    }
     return limits;
 }
 
@@ -65,11 +68,12 @@ bool all_delaunay(const std::vector<TetPoints>& tets, const std::vector<Vec3>& p
     return true;
 }
 
-void widen(CosineRange& range, const TetPoints& p) {
-    const CosineRange c = tet_shape(p).cosines;
+void widen(CosineRange& range, const CosineRange& c) {
     range.of_min = std::max(range.of_min, c.of_min);
     range.of_max = std::min(range.of_max, c.of_max);
 }
+
+void widen(CosineRange& range, const TetPoints& p) { widen(range, tet_shape(p).cosines); }
 
 CosineRange cosine_range(const EditableMesh& mesh, const std::vector<int32_t>& tets) {
     CosineRange r{-1.0, 1.0};

@@ -40,9 +40,11 @@ bool odt_target(const EditableMesh& mesh, int32_t v, Vec3& target);
 // Every tet of `tets` has none of `points` strictly inside its circumsphere.
 bool all_delaunay(const std::vector<TetPoints>& tets, const std::vector<Vec3>& points);
 
-// The extreme dihedral angles (as cosines) over `tets`; widen adds one tet.
+// The extreme dihedral angles (as cosines) over `tets`; widen adds one tet
+// (or its cosines).
 CosineRange cosine_range(const EditableMesh& mesh, const std::vector<int32_t>& tets);
 void widen(CosineRange& range, const TetPoints& p);
+void widen(CosineRange& range, const CosineRange& c);
 // `inner` lies within `outer`: its smallest angle no smaller, its largest no larger.
 inline bool within(const CosineRange& inner, const CosineRange& outer) {
     return inner.of_min <= outer.of_min && inner.of_max >= outer.of_max;

@@ -73,6 +73,9 @@ bool remove_edge(EditableMesh& mesh, int32_t a, int32_t b, const EdgeRing& ring,
 // The 2-3 flip: the two tets on face (a, b, c) become three around the edge
 // joining their apexes.
 bool flip_23(EditableMesh& mesh, const FaceKey& face, const TopologyRules& rules, double must_exceed);
+// The same with the face's two tets known (mesh.face_tets(face, t) gave 2).
+bool flip_23(EditableMesh& mesh, const FaceKey& face, const int32_t t[2], const TopologyRules& rules,
+             double must_exceed);
 
 // Edge split: a new vertex at p, every tet around (a, b) split in two.  On a
 // surface edge p is first projected onto the segment.  Returns the new

@@ -55,7 +55,7 @@ bool flip_around(EditableMesh& mesh, int32_t t, const TopologyRules& rules, Edge
         if (failed.repeats(mesh, face)) continue;
         int32_t pair[2];
         const bool inner = mesh.face_tets(face, pair) == 2;
-        if (inner && flip_23(mesh, face, rules, worst_sine(mesh, {pair[0], pair[1]}) + kGain)) return true;
+        if (inner && flip_23(mesh, face, pair, rules, worst_sine(mesh, {pair[0], pair[1]}) + kGain)) return true;
         failed.record(mesh, face, inner ? pair : nullptr);
     }
     return false;
@@ -319,7 +319,7 @@ int32_t all_boundary_pass(EditableMesh& mesh, const TopologySettings& s, const T
             const FaceKey face = FaceKey::of(q[f[0]], q[f[1]], q[f[2]]);
             int32_t pair[2];
             if (mesh.face_tets(face, pair) != 2) continue;
-            done = swap([&] { return flip_23(mesh, face, loose, 0.0); });
+            done = swap([&] { return flip_23(mesh, face, pair, loose, 0.0); });
         }
         swaps += done;
     }
