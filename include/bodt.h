@@ -731,9 +731,10 @@ enum bodt_format {
      * fixed vertices, corners or feature edges. */
     BODT_FORMAT_TETGEN = 3,
     /* .msh, Gmsh: reads 2.2 and 4.1, ASCII and binary; physical tags of
-     * volumes are region ids, of surfaces face markers, of curves feature
-     * edge refs (line elements are feature edges), of points fixed
-     * vertices.  No vertex refs or corners.  Writes 4.1 ASCII; the next
+     * volumes are region ids (without any physical volume, the tets of
+     * several volumes take their volume's entity tag), of surfaces face
+     * markers, of curves feature edge refs (line elements are feature
+     * edges), of points fixed vertices.  No vertex refs or corners.  Writes 4.1 ASCII; the next
      * three write the other variants. */
     BODT_FORMAT_GMSH = 4,
     BODT_FORMAT_GMSH_BINARY = 5,    /* writes 4.1 binary                      */

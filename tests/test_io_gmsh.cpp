@@ -20,6 +20,13 @@
 //                   2 of volume 1 each, 8 faces with marker 10 on z = 0, one
 //                   feature edge (0,0,0)-(0,0,1) with ref 20, the origin
 //                   fixed; the four read the same
+//   entity_regions  the two files Gmsh made from box_nophysical.geo (box.geo
+//                   without physical groups: every element saved, tagged
+//                   with its entity only), 4.1 and 2.2: each tet's region
+//                   is its volume's entity tag, 24 tets and volume 1 in
+//                   regions 1 and 2, x <= 1 in region 1; the 20 curves'
+//                   lines are feature edges with ref 0; no marked face, no
+//                   fixed vertex
 //   sparse_tags     hand-written files with sparse, unordered node tags,
 //                   parametric nodes, skipped quads, unknown 2-D types,
 //                   other sections: renumbered in file order, base 0; lines
@@ -267,6 +274,33 @@ void test_gmsh_files(void** /*state*/) {
                       d.edge_refs == first.edge_refs && d.fixed == first.fixed,
                   "differs from %s", names[0]);
         }
+    }
+}
+
+void test_entity_regions(void** /*state*/) {
+    for (const char* name : {"box_nophysical41.msh", "box_nophysical22.msh"}) {
+        const char* what = name;
+        MeshData d;
+        try {
+            d = bodt::read_gmsh(data(name));
+        } catch (const Error& e) {
+            CHECK(false, "%s", e.what());
+        }
+        CHECK(d.tets.size() == 4 * 48 && d.regions.size() == 48, "%zu tets", d.tets.size() / 4);
+        double volume[3] = {0, 0, 0};
+        for (size_t t = 0; t < 48; ++t) {
+            CHECK(d.regions[t] == 1 || d.regions[t] == 2, "tet %zu has region %d", t, d.regions[t]);
+            volume[d.regions[t]] += std::fabs(tet_volume(d, t));
+            for (int k = 0; k < 4 && d.regions[t] == 1; ++k)
+                CHECK(d.xyz[3 * (d.tets[4 * t + k] - d.base)] <= 1.0, "a tet of region 1 beyond x = 1");
+        }
+        CHECK(std::count(d.regions.begin(), d.regions.end(), 1) == 24, "not 24 tets in region 1");
+        CHECK(std::fabs(volume[1] - 1) < 1e-12 && std::fabs(volume[2] - 1) < 1e-12, "volumes %g and %g", volume[1],
+              volume[2]);
+        CHECK(d.edge_refs == std::vector<int32_t>(20, 0), "%zu feature edges, expected 20 with ref 0",
+              d.edge_refs.size());
+        CHECK(d.triangles.empty() && d.fixed.empty(), "%zu marked faces, %zu fixed vertices", d.triangles.size() / 3,
+              d.fixed.size());
     }
 }
 
@@ -584,7 +618,8 @@ int main(int argc, char** argv) {
     g_scratch = argv[2];
     mkdir(g_scratch.c_str(), 0755);
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_round_trip), cmocka_unit_test(test_gmsh_files), cmocka_unit_test(test_sparse_tags),
+        cmocka_unit_test(test_round_trip), cmocka_unit_test(test_gmsh_files),
+        cmocka_unit_test(test_entity_regions), cmocka_unit_test(test_sparse_tags),
         cmocka_unit_test(test_malformed), cmocka_unit_test(test_bad_write),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

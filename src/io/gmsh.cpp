@@ -381,6 +381,7 @@ public:
         if (!nodes_read_) in_.fail("no $Nodes section");
         if (!elements_read_) in_.fail("no $Elements section");
         if (d_.tets.empty()) in_.fail("no 4-node tetrahedra (element type 4) in the file");
+        regions_from_entities();
         return std::move(d_);
     }
 
@@ -527,13 +528,15 @@ private:
     }
 
     // ---- $Elements
-    // Stores one element of a known type whose vertices are in v_.
-    void add_element(int type, int32_t physical) {
+    // Stores one element of a known type whose vertices are in v_, from
+    // the geometric entity `entity` (0 when a 2.2 file gives none).
+    void add_element(int type, int32_t physical, int32_t entity) {
         switch (type) {
             case kTet:
                 if (d_.tets.size() / 4 >= static_cast<size_t>(INT32_MAX)) in_.fail("more than 2^31 - 1 tets");
                 d_.tets.insert(d_.tets.end(), v_, v_ + 4);
                 d_.regions.push_back(physical);
+                tet_entities_.push_back(entity);
                 break;
             case kTriangle:
                 if (physical != 0) {
@@ -563,6 +566,16 @@ private:
         if (!lines_.insert(key).second) return;
         d_.feature_edges.insert(d_.feature_edges.end(), v_, v_ + 2);
         d_.edge_refs.push_back(physical);
+    }
+
+    // Without physical volumes, Gmsh's volumes are the regions (gmsh.hpp).
+    void regions_from_entities() {
+        const auto physical = [](int32_t r) { return r != 0; };
+        if (std::any_of(d_.regions.begin(), d_.regions.end(), physical)) return;
+        const auto other = std::find_if(tet_entities_.begin(), tet_entities_.end(),
+                                        [this](int32_t e) { return e != tet_entities_.front(); });
+        if (other != tet_entities_.end()) d_.regions = std::move(tet_entities_);
+        tet_entities_ = {};
     }
 
     static bool used(int type) { return type == kTet || type == kTriangle || type == kLine || type == kPoint; }
@@ -607,7 +620,7 @@ private:
                     const int64_t node = in_.tag("a node tag of an element");
                     if (keep) v_[k] = vertex(node, tag);
                 }
-                if (keep) add_element(t->type, physical);
+                if (keep) add_element(t->type, physical, static_cast<int32_t>(entity));
             }
         }
         if (seen != total)
@@ -616,13 +629,13 @@ private:
     }
 
     // One 2.2 element after its type and tags.
-    void element22(int64_t tag, const ElementType* t, int32_t physical) {
+    void element22(int64_t tag, const ElementType* t, int32_t physical, int32_t entity) {
         const bool keep = used(t->type);
         for (int k = 0; k < t->nodes; ++k) {
             const int64_t node = in_.int_in("a node tag of an element", INT32_MIN, INT32_MAX);
             if (keep) v_[k] = vertex(node, tag);
         }
-        if (keep) add_element(t->type, physical);
+        if (keep) add_element(t->type, physical, entity);
     }
 
     const ElementType* type22(int64_t type) {
@@ -639,12 +652,13 @@ private:
                 const int64_t tag = in_.read_int("an element number");
                 const ElementType* t = type22(in_.read_int("an element type"));
                 const int64_t ntags = in_.read_count("the number of element tags", 2);
-                int32_t physical = 0;
+                int32_t physical = 0, entity = 0;  // the first two tags
                 for (int64_t k = 0; k < ntags; ++k) {
                     const auto v = static_cast<int32_t>(in_.read_int_in("an element tag", INT32_MIN, INT32_MAX));
                     if (k == 0) physical = v;
+                    if (k == 1) entity = v;
                 }
-                element22(tag, t, physical);
+                element22(tag, t, physical, entity);
             }
             return;
         }
@@ -657,12 +671,13 @@ private:
             in_.need(static_cast<uint64_t>(follow), static_cast<uint64_t>(4 * (1 + ntags + t->nodes)), "elements");
             for (int64_t e = 0; e < follow; ++e) {
                 const int64_t tag = in_.bin_int("an element number");
-                int32_t physical = 0;
+                int32_t physical = 0, entity = 0;
                 for (int64_t k = 0; k < ntags; ++k) {
                     const int32_t v = in_.bin_int("an element tag");
                     if (k == 0) physical = v;
+                    if (k == 1) entity = v;
                 }
-                element22(tag, t, physical);
+                element22(tag, t, physical, entity);
             }
             seen += follow;
         }
@@ -676,6 +691,7 @@ private:
     NodeMap map_;
     std::map<int64_t, int32_t> physical_[4];  // entity tag -> first physical tag, per dimension
     std::unordered_set<uint64_t> lines_;      // the feature edges so far, (low, high) vertex
+    std::vector<int32_t> tet_entities_;       // each tet's volume entity
     int32_t v_[64] = {};                      // vertices of the element being read
 };
 

@@ -8,7 +8,14 @@
 //               the file's tags; otherwise the vertices are renumbered in
 //               file order and base = 0.
 //   $Elements   type 4 (4-node tet)   -> tets, region = the first physical
-//                                        tag of its volume (0 when none)
+//                                        tag of its volume (0 when none);
+//                                        in a file without any physical
+//                                        volume whose tets lie in several
+//                                        volumes (Gmsh saves all elements
+//                                        when no physical group is set),
+//                                        the volume's entity tag, so the
+//                                        surfaces between the volumes stay
+//                                        interfaces
 //               type 2 (3-node tri)   -> triangles + tri_markers, marker =
 //                                        the first physical tag of its
 //                                        surface; triangles without one are
