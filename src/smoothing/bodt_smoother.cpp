@@ -53,6 +53,7 @@ bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) 
 
     if (classes_.cls[v] == VertexClass::FeatureLine || free_dims == 1) {
         Vec3 d;
+        double whole = 1.0;  // |d| before the projection: the test below is relative, as d scales with the mesh
         if (free_dims == 1) {
             d = solver.eigenvectors().col(0);  // the only free direction
         } else {
@@ -66,10 +67,11 @@ bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) 
                 d = e.col(2);  // e2 of eq. (11)
             }
             const Vec3 n = plane_normal(solver);
+            whole = d.norm();
             d -= d.dot(n) * n;  // keep the volume: stay in the tangent plane (a no-op for n_a x n_b)
         }
         const double len = d.norm();
-        if (!(len > 1e-12)) return false;
+        if (!(len > 1e-12 * whole)) return false;
         basis.resize(3, 1);
         basis.col(0) = d / len;
         return true;
