@@ -374,7 +374,8 @@ enum bodt_mode {
      * on every boundary and interface vertex. */
     BODT_MODE_BODT_BASIC = 3,
     /* B-ODT (the default): Algorithm 1 inside, Algorithm 2 on smooth surface
-     * vertices, Algorithm 3 along feature lines, corners fixed. */
+     * vertices, Algorithm 3 along feature lines, corners fixed; from the
+     * second step on, the angle ascent of BODT_PARAM_ASCENT_ANGLE too. */
     BODT_MODE_BODT = 4,
     /* Paper 001: each interior vertex of a poor tet (stretch below
      * BODT_PARAM_POOR_QUALITY) minimises f = (1 - C) sum e(T) over interior
@@ -525,7 +526,15 @@ enum bodt_param {
      * of threads.  One by default: a solver running a process per core (MPI)
      * would otherwise have more threads than cores, and a sweep waits for
      * its slowest thread once per colour. */
-    BODT_PARAM_THREADS = 22
+    BODT_PARAM_THREADS = 22,
+    /* double in [0, 60], default 30: BODT_MODE_BODT's angle ascent, not in
+     * the papers.  From the second step on (counted since the mesh data
+     * last changed), a sweep also moves each inner vertex of a tet with a
+     * dihedral angle outside [this, 180 - this] degrees up the gradient of
+     * that tet's worst angle, guarded as every move is: where ODT has
+     * converged with a bad tet left, this raises the smallest angle.  0
+     * turns it off (the paper's smoothing alone). */
+    BODT_PARAM_ASCENT_ANGLE = 23
 };
 
 /*

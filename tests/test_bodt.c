@@ -17,6 +17,11 @@
  *                 of the star's size is not made (at 1 none is, also on the
  *                 box scaled by 1e-6); at the default the box converges and
  *                 then stays bit for bit, no vertex tried again
+ *   angle ascent  BODT_PARAM_ASCENT_ANGLE: default, range; BODT (default
+ *                 operations) from its second step on raises the smallest
+ *                 angle of a lazy cube beyond what it reaches without (0),
+ *                 the first step the same, extremes never worse, volume
+ *                 kept; ODT and BODT_BASIC do not read it
  *   odt           ODT moves interior vertices only; boundary bit for bit
  *   features      BODT: corners bit for bit, edge vertices on their lines,
  *                 face vertices on their planes, and they do move, on the
@@ -288,6 +293,83 @@ static void test_converged(void **state) {
     }
     if (memcmp(get_xyz(h, m->nverts), before, 3 * (size_t)m->nverts * sizeof *before) != 0)
         fail_msg("after convergence the vertices changed");
+}
+
+/* ---------------------------------------------------------- angle ascent */
+
+/* BODT_PARAM_ASCENT_ANGLE: default 30, range [0, 60], a refused value
+ * leaves the last.  On a lazy triangulation of a cube (BODT with its
+ * default operations, 30 steps): the first step is the same with the
+ * ascent as without it (0), bit for bit; from then on the ascent moves
+ * inner vertices of bad tets, and the mesh ends with a larger smallest
+ * angle; the extremes are never worse than a step before, and the volume
+ * stays.  ODT and BODT_BASIC do not read the parameter. */
+static void test_angle_ascent(void **state) {
+    (void)state;
+    test_mesh *m = cleanup_add(calloc(1, sizeof(test_mesh)), cleanup_free_test_mesh);
+    assert_non_null(m);
+    assert_int_equal(tm_make_lazy(m, 300, 3), 0);
+    bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
+    double a = 0.0;
+    assert_int_equal(bodt_get_param_double(h, BODT_PARAM_ASCENT_ANGLE, &a), BODT_OK);
+    assert_true(a == 30.0);
+    const double good[] = {0.0, 60.0, 25.0}, bad[] = {-1.0, 60.5, NAN, INFINITY};
+    for (int k = 0; k < 3; ++k) assert_int_equal(bodt_set_param_double(h, BODT_PARAM_ASCENT_ANGLE, good[k]), BODT_OK);
+    for (int k = 0; k < 4; ++k) {
+        assert_int_equal(bodt_set_param_double(h, BODT_PARAM_ASCENT_ANGLE, bad[k]), BODT_ERR_INVALID_ARGUMENT);
+        assert_non_null(strstr(bodt_mesh_last_error(h), "BODT_PARAM_ASCENT_ANGLE"));
+    }
+    assert_int_equal(bodt_get_param_double(h, BODT_PARAM_ASCENT_ANGLE, &a), BODT_OK);
+    assert_true(a == 25.0);
+    assert_int_equal(bodt_set_param_int(h, BODT_PARAM_ASCENT_ANGLE, 1), BODT_ERR_INVALID_ARGUMENT);
+
+    enum { STEPS_RUN = 30 };
+    double last_min[2] = {0, 0};
+    const double *after_first[2] = {NULL, NULL};
+    int32_t first_count[2] = {0, 0};
+    const double v0 = total_volume(h, m->ntets);
+    for (int with = 0; with <= 1; ++with) {
+        bodt_mesh *g = create_smoothing(m, BODT_MODE_BODT);
+        assert_int_equal(bodt_set_param_int(g, BODT_PARAM_OPS, BODT_OPS_MODE_DEFAULT), BODT_OK);
+        assert_int_equal(bodt_set_param_double(g, BODT_PARAM_ASCENT_ANGLE, with ? 30.0 : 0.0), BODT_OK);
+        bodt_step_report r, before;
+        step_ok(g, &r);
+        int32_t nv = 0, nt = 0;
+        assert_int_equal(bodt_mesh_get_counts(g, &nv, &nt, NULL), BODT_OK);
+        after_first[with] = get_xyz(g, nv);
+        first_count[with] = nv;
+        for (int k = 1; k < STEPS_RUN; ++k) {
+            before = r;
+            step_ok(g, &r);
+            if (r.min_dihedral < before.min_dihedral || r.max_dihedral > before.max_dihedral)
+                fail_msg("ascent %d, step %d: extremes %.6f / %.6f after %.6f / %.6f", with, k + 1, r.min_dihedral,
+                         r.max_dihedral, before.min_dihedral, before.max_dihedral);
+        }
+        last_min[with] = r.min_dihedral;
+        assert_int_equal(bodt_mesh_get_counts(g, &nv, &nt, NULL), BODT_OK);
+        const double v = total_volume(g, nt);
+        if (!(fabs(v - v0) <= 1e-12 * fabs(v0))) fail_msg("ascent %d: volume %.17g, was %.17g", with, v, v0);
+    }
+    if (first_count[0] != first_count[1] ||
+        memcmp(after_first[0], after_first[1], 3 * (size_t)first_count[0] * sizeof(double)) != 0)
+        fail_msg("the first step differs with the ascent");
+    print_message("smallest angle after %d steps: %.3f without the ascent, %.3f with\n", STEPS_RUN, last_min[0],
+                  last_min[1]);
+    if (!(last_min[1] > last_min[0] + 0.1)) fail_msg("the ascent did not raise the smallest angle");
+
+    const int others[] = {BODT_MODE_ODT, BODT_MODE_BODT_BASIC};
+    for (int o = 0; o < 2; ++o) {
+        const double *xyz[2];
+        for (int with = 0; with <= 1; ++with) {
+            bodt_mesh *g = create_smoothing(m, others[o]);
+            assert_int_equal(bodt_set_param_double(g, BODT_PARAM_ASCENT_ANGLE, with ? 30.0 : 0.0), BODT_OK);
+            bodt_step_report r;
+            for (int k = 0; k < 5; ++k) step_ok(g, &r);
+            xyz[with] = get_xyz(g, m->nverts);
+        }
+        if (memcmp(xyz[0], xyz[1], 3 * (size_t)m->nverts * sizeof(double)) != 0)
+            fail_msg("mode %d reads BODT_PARAM_ASCENT_ANGLE", others[o]);
+    }
 }
 
 /* ---------------------------------------------------------------- 2 ODT */
@@ -1048,6 +1130,7 @@ int main(void) {
         cmocka_unit_test_teardown(test_volume_l_shape, cleanup_teardown),
         cmocka_unit_test_teardown(test_volume_notch, cleanup_teardown),
         cmocka_unit_test_teardown(test_converged, cleanup_teardown),
+        cmocka_unit_test_teardown(test_angle_ascent, cleanup_teardown),
         cmocka_unit_test_teardown(test_odt_moves_interior_only, cleanup_teardown),
         cmocka_unit_test_teardown(test_features_box, cleanup_teardown),
         cmocka_unit_test_teardown(test_user_feature_line, cleanup_teardown),

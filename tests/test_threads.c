@@ -14,7 +14,10 @@
  *               vertex on the boundary), give
  *               the same vertices and extreme angles, bit for bit, as runs
  *               that make the library forget the skips before every step
- *               (a parameter set to its value), on 1 and 2 threads, with
+ *               (BODT_PARAM_THREADS set to its value, which keeps only the
+ *               tets no refinement fixed: forgetting those, which stand
+ *               for themselves even where their vertices moved, may change
+ *               the result, which the threads must not), on 1 and 2 threads, with
  *               fewer trial moves (some skips happened) and the same moves
  *   flip_memory B-ODT with flips and insertion remembers the flips that
  *               failed, and the bad tets no flip or insertion fixed, across

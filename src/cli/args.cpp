@@ -223,6 +223,7 @@ const std::vector<ParamInfo>& param_table() {
         {"density_collapse", BODT_PARAM_DENSITY_COLLAPSE, false},
         {"fit_tolerance", BODT_PARAM_FIT_TOLERANCE, false},
         {"threads", BODT_PARAM_THREADS, true},
+        {"ascent_angle", BODT_PARAM_ASCENT_ANGLE, false},
     };
     return table;
 }

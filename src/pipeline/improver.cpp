@@ -3,6 +3,7 @@
 #include "bodt.h"
 #include "common/error.hpp"
 #include "quality/mesh_quality.hpp"
+#include "smoothing/angle_ascent.hpp"
 #include "smoothing/bodt_smoother.hpp"
 #include "smoothing/coloured_sweep.hpp"
 #include "smoothing/laplace.hpp"
@@ -82,7 +83,10 @@ void Improver::set_mode(int mode) {
 void Improver::set_param_int(int key, int32_t value) {
     bodt::set_param_int(params_, key, value);
     settled_.clear();
-    failed_.unrefined.clear();
+    // The tets no refinement fixed are kept while they stand, even where
+    // their vertices moved: forgetting them can change the result, which
+    // the number of threads must not.
+    if (key != BODT_PARAM_THREADS) failed_.unrefined.clear();
 }
 
 void Improver::set_param_double(int key, double value) {
@@ -138,7 +142,11 @@ void Improver::sweep_laplace(TetMesh& mesh, ShapeCache& shapes, StepReport& repo
 }
 
 // ODT, B-ODT basic and B-ODT: the modes differ only in which vertices move
-// (ODT: inner ones) and how the surface vertices were classified.
+// (ODT: inner ones) and how the surface vertices were classified.  B-ODT
+// adds, from its second step on, the angle ascent (smoothing/angle_ascent.hpp)
+// for the inner vertices of bad tets: the first step is the papers'
+// smoothing and connectivity changes alone, which make the large changes
+// the ascent would otherwise get in the way of.
 void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes,
                           StepReport& report) const {
     const VertexClasses& cls = classes(mesh, surfaces);
@@ -149,6 +157,11 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
         StepReport report;
     };
     const bool interior_only = mode_ == BODT_MODE_ODT;
+    const bool ascent = mode_ == BODT_MODE_BODT && params_.ascent_angle > 0.0 && steps_on_data_ > 0;
+    // A vertex that stayed without the ascent may move with it.
+    if (ascent && !ascent_swept_) settled_.clear();
+    ascent_swept_ = ascent;
+    const AngleAscent ascent_move(params_.ascent_angle);
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
     settled_.begin_sweep(mesh.points.size(), mesh.colouring().colours());
     const auto states = coloured_sweep(
@@ -157,12 +170,27 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
             if ((interior_only && cls.cls[v] != VertexClass::Interior) || settled_.settled(mesh, v)) return;
             StarTable& star = s.guard.star();
             star.gather(mesh, v);
-            const bool moved = smooth_vertex(
+            const int32_t refused = s.report.moves_rejected;
+            bool moved = smooth_vertex(
                 [&](Vec3& target) { return s.smoother.target(mesh, v, star, target, s.faces); },
                 [&](const Vec3& target, double& distance) {
                     return s.guard.move_gathered(mesh, v, target, s.faces, distance);
                 },
                 s.report);
+            Vec3 target;
+            if (ascent && cls.cls[v] == VertexClass::Interior && ascent_move.target(mesh, v, star, shapes, target)) {
+                // The star table holds no point of v: still v's star after an ODT move.
+                double distance = 0.0;
+                if (s.guard.move_gathered(mesh, v, target, s.faces, distance) != MoveOutcome::Rejected) {
+                    // Counted once, as moved, even when its ODT move was refused.
+                    if (!moved) {
+                        s.report.moves_rejected = refused;
+                        ++s.report.vertices_moved;
+                    }
+                    s.report.max_move = std::max(s.report.max_move, distance);
+                    moved = true;
+                }
+            }
             if (moved) settled_.moved(v, settled_.tick(colour));
             else settled_.stayed(v, settled_.tick(colour));
         });
@@ -441,6 +469,7 @@ StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
     if (shapes_.empty()) shapes_ = tet_shapes(mesh, threads);
     const QualityExtremes q = quality_extremes(shapes_, threads);
     report.step = ++steps_done_;
+    ++steps_on_data_;
     report.min_dihedral = q.min_dihedral;
     report.max_dihedral = q.max_dihedral;
     report.min_stretch = q.min_stretch;

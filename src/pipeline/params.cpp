@@ -44,6 +44,7 @@ constexpr Info kParams[] = {
     {BODT_PARAM_DENSITY_COLLAPSE, "BODT_PARAM_DENSITY_COLLAPSE", Type::Double, 1.0, 100.0, true, false},
     {BODT_PARAM_FIT_TOLERANCE, "BODT_PARAM_FIT_TOLERANCE", Type::Double, 0.0, 0.1, true, false},
     {BODT_PARAM_THREADS, "BODT_PARAM_THREADS", Type::Int, 0, 1024},
+    {BODT_PARAM_ASCENT_ANGLE, "BODT_PARAM_ASCENT_ANGLE", Type::Double, 0.0, 60.0},
 };
 
 const Info& lookup(int key, Type want) {
@@ -104,6 +105,7 @@ double& double_field(Params& p, int key) {
         case BODT_PARAM_DENSITY_SPLIT: return p.density_split;
         case BODT_PARAM_DENSITY_COLLAPSE: return p.density_collapse;
         case BODT_PARAM_FIT_TOLERANCE: return p.fit_tolerance;
+        case BODT_PARAM_ASCENT_ANGLE: return p.ascent_angle;
         default: return p.corner_ratio;
     }
 }

@@ -28,6 +28,7 @@ struct Params {
     double density_collapse = 1.5;      // BODT_PARAM_DENSITY_COLLAPSE (delta)
     double fit_tolerance = 1e-5;   // BODT_PARAM_FIT_TOLERANCE
     int32_t threads = 1;           // BODT_PARAM_THREADS: 0 = OpenMP's default
+    double ascent_angle = 30.0;    // BODT_PARAM_ASCENT_ANGLE, degrees (0: off)
 };
 
 // Each throws Error(BODT_ERR_INVALID_ARGUMENT) for an unknown key, a key of

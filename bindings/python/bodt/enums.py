@@ -102,6 +102,7 @@ class Param(IntEnum):
     DENSITY_COLLAPSE = 20
     FIT_TOLERANCE = 21
     THREADS = 22
+    ASCENT_ANGLE = 23
 
 
 class Op(IntFlag):

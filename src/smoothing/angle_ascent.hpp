@@ -1,0 +1,34 @@
+// A move for an inner vertex of a bad tet that the ODT update leaves bad:
+// up the gradient of that tet's worst dihedral angle.  ODT (eq. 3 of paper
+// 000) minimises the interpolation error, not the worst angle; where it has
+// converged a tet with an angle outside [a, 180 - a] may still be fixed by
+// moving one of its vertices away from it -- what optimisation-based
+// smoothing (Freitag and Ollivier-Gooch 1997) does for the worst tet of a
+// star.  Not in the three papers: BODT_MODE_BODT adds it once a step has
+// left the mesh's smallest angle where it was (BODT_PARAM_ASCENT_ANGLE).
+#pragma once
+
+#include "mesh/tet_mesh.hpp"
+#include "quality/mesh_quality.hpp"
+#include "smoothing/star_table.hpp"
+
+#include <cstdint>
+
+namespace bodt {
+
+class AngleAscent {
+public:
+    // Tets with an angle outside [angle_deg, 180 - angle_deg] are bad.
+    explicit AngleAscent(double angle_deg);
+
+    // Where v (an inner vertex, its star in `star`, the shapes of the
+    // mesh's tets in `shapes`) goes to raise the worst angle of its worst
+    // star tet: false when no star tet is bad.  The move is half as long as
+    // the shortest edge of that tet at v; the guard shortens it.
+    bool target(const TetMesh& mesh, int32_t v, const StarTable& star, const ShapeCache& shapes, Vec3& target) const;
+
+private:
+    double bad_cosine_;  // cos a: a tet is bad when its badness exceeds it
+};
+
+}  // namespace bodt
