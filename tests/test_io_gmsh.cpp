@@ -91,6 +91,23 @@ double tet_volume(const MeshData& d, size_t t) {
            6.0;
 }
 
+// The two unit cubes of box.geo (and box_nophysical.geo): 48 tets, 24 in
+// region 1 (x <= 1) and 24 in region 2, volume 1 each.
+void check_two_cubes(const MeshData& d, const char* what) {
+    CHECK(d.tets.size() == 4 * 48 && d.regions.size() == 48, "%zu tets, %zu regions", d.tets.size() / 4,
+          d.regions.size());
+    double volume[3] = {0, 0, 0};
+    for (size_t t = 0; t < 48; ++t) {
+        CHECK(d.regions[t] == 1 || d.regions[t] == 2, "tet %zu has region %d", t, d.regions[t]);
+        volume[d.regions[t]] += std::fabs(tet_volume(d, t));
+        for (int k = 0; k < 4 && d.regions[t] == 1; ++k)
+            CHECK(d.xyz[3 * static_cast<size_t>(d.tets[4 * t + k] - d.base)] <= 1.0, "a tet of region 1 beyond x = 1");
+    }
+    CHECK(std::count(d.regions.begin(), d.regions.end(), 1) == 24, "not 24 tets in region 1");
+    CHECK(std::fabs(volume[1] - 1) < 1e-12 && std::fabs(volume[2] - 1) < 1e-12, "volumes %g and %g", volume[1],
+          volume[2]);
+}
+
 // A 2 x 2 x 2 grid of cubes, six tets each (positively oriented), with
 // jittered coordinates that %.6g would not reproduce; regions, markers,
 // edges and fixed vertices.
@@ -245,16 +262,7 @@ void test_gmsh_files(void** /*state*/) {
         }
         CHECK(d.base == 1, "base %d", d.base);
         CHECK(d.xyz.size() == 3 * 23, "%zu vertices", d.xyz.size() / 3);
-        CHECK(d.tets.size() == 4 * 48, "%zu tets", d.tets.size() / 4);
-        CHECK(d.regions.size() == 48, "%zu regions", d.regions.size());
-        double volume[3] = {0, 0, 0};
-        for (size_t t = 0; t < 48; ++t) {
-            CHECK(d.regions[t] == 1 || d.regions[t] == 2, "tet %zu has region %d", t, d.regions[t]);
-            volume[d.regions[t]] += std::fabs(tet_volume(d, t));
-        }
-        CHECK(std::count(d.regions.begin(), d.regions.end(), 1) == 24, "not 24 tets in region 1");
-        CHECK(std::fabs(volume[1] - 1) < 1e-12 && std::fabs(volume[2] - 1) < 1e-12, "volumes %g and %g", volume[1],
-              volume[2]);
+        check_two_cubes(d, what);
         CHECK(d.tri_markers == std::vector<int32_t>(8, 10), "%zu markers, expected 8 x 10", d.tri_markers.size());
         for (int32_t v : d.triangles) CHECK(d.xyz[3 * (v - 1) + 2] == 0.0, "a marked face vertex off z = 0");
         CHECK(d.feature_edges.size() == 2, "%zu feature edges", d.feature_edges.size() / 2);
@@ -286,17 +294,7 @@ void test_entity_regions(void** /*state*/) {
         } catch (const Error& e) {
             CHECK(false, "%s", e.what());
         }
-        CHECK(d.tets.size() == 4 * 48 && d.regions.size() == 48, "%zu tets", d.tets.size() / 4);
-        double volume[3] = {0, 0, 0};
-        for (size_t t = 0; t < 48; ++t) {
-            CHECK(d.regions[t] == 1 || d.regions[t] == 2, "tet %zu has region %d", t, d.regions[t]);
-            volume[d.regions[t]] += std::fabs(tet_volume(d, t));
-            for (int k = 0; k < 4 && d.regions[t] == 1; ++k)
-                CHECK(d.xyz[3 * (d.tets[4 * t + k] - d.base)] <= 1.0, "a tet of region 1 beyond x = 1");
-        }
-        CHECK(std::count(d.regions.begin(), d.regions.end(), 1) == 24, "not 24 tets in region 1");
-        CHECK(std::fabs(volume[1] - 1) < 1e-12 && std::fabs(volume[2] - 1) < 1e-12, "volumes %g and %g", volume[1],
-              volume[2]);
+        check_two_cubes(d, what);
         CHECK(d.edge_refs == std::vector<int32_t>(20, 0), "%zu feature edges, expected 20 with ref 0",
               d.edge_refs.size());
         CHECK(d.triangles.empty() && d.fixed.empty(), "%zu marked faces, %zu fixed vertices", d.triangles.size() / 3,

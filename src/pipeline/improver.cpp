@@ -158,9 +158,9 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
     };
     const bool interior_only = mode_ == BODT_MODE_ODT;
     const bool ascent = mode_ == BODT_MODE_BODT && params_.ascent_angle > 0.0 && steps_on_data_ > 0;
-    // A vertex that stayed without the ascent may move with it.
-    if (ascent && !ascent_swept_) settled_.clear();
-    ascent_swept_ = ascent;
+    // A vertex that stayed in the first step may move with the ascent (a
+    // mode or parameter change clears the records itself).
+    if (ascent && steps_on_data_ == 1) settled_.clear();
     const AngleAscent ascent_move(params_.ascent_angle);
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
     settled_.begin_sweep(mesh.points.size(), mesh.colouring().colours());

@@ -104,7 +104,6 @@ private:
     Params params_;
     int32_t steps_done_ = 0;
     int32_t steps_on_data_ = 0;  // steps done since the mesh data last changed
-    mutable bool ascent_swept_ = false;  // the last B-ODT sweep tried angle ascent moves
     // tet_shapes() of the mesh as the last step left it, kept up to date by
     // the guarded sweeps and carried over by the topology passes; emptied
     // by whatever else moves a vertex or changes the connectivity (the

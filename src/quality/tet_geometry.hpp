@@ -118,6 +118,12 @@ struct CosineRange {
     double of_max;  // cos of the largest angle (the smallest cosine)
 };
 
+// The magnitude of the cosine of the tet's angle farthest from 90 degrees
+// (1 for a tet that is not positively oriented): its worst angle's sine is
+// sqrt(1 - worst_cosine^2).  The smallest angle is below 90 degrees, so its
+// cosine is positive.
+inline double worst_cosine(const CosineRange& c) { return std::max(c.of_min, -c.of_max); }
+
 // What the move guard needs of a tet.
 struct TetShape {
     double stretch;

@@ -6,16 +6,6 @@
 
 namespace bodt {
 
-namespace {
-
-// A tet's badness: the cosine of its angle farthest from 90 degrees, as a
-// magnitude (cos of the smallest, minus cos of the largest, whichever is
-// larger); 1 for a tet that is not positively oriented.  The worst angle's
-// sine is sqrt(1 - badness^2): lowering the badness raises it.
-double badness(const CosineRange& c) { return std::max(c.of_min, -c.of_max); }
-
-}  // namespace
-
 AngleAscent::AngleAscent(double angle_deg) : bad_cosine_(std::cos(angle_deg * M_PI / 180.0)) {}
 
 bool AngleAscent::target(const TetMesh& mesh, int32_t v, const StarTable& star, const ShapeCache& shapes,
@@ -25,7 +15,7 @@ bool AngleAscent::target(const TetMesh& mesh, int32_t v, const StarTable& star, 
     size_t worst = n;
     double most = bad_cosine_;
     for (size_t k = 0; k < n; ++k) {
-        const double b = badness(shapes[static_cast<size_t>(tets[k])].cosines);
+        const double b = worst_cosine(shapes[static_cast<size_t>(tets[k])].cosines);
         if (b > most) {
             most = b;
             worst = k;
@@ -33,12 +23,13 @@ bool AngleAscent::target(const TetMesh& mesh, int32_t v, const StarTable& star, 
     }
     if (worst == n) return false;
     const Vec3 x0 = mesh.points[v];
-    const auto badness_at = [&](const Vec3& x) {
-        return badness(shape_of(star_tet_kernel(star.opposite(), star.at(), n, worst, coords(x))).cosines);
+    const auto worst_cosine_at = [&](const Vec3& x) {
+        return worst_cosine(shape_of(star_tet_kernel(star.opposite(), star.at(), n, worst, coords(x))).cosines);
     };
-    // The worst angle is the largest of six smooth functions of x: its
-    // gradient by central differences, over a step far below the tet's
-    // size and far above round-off.
+    // Lowering worst_cosine raises the worst angle's sine.  It is the
+    // largest of six smooth functions of x: its gradient by central
+    // differences, over a step far below the tet's size and far above
+    // round-off.
     double shortest = std::numeric_limits<double>::infinity();
     for (size_t c = 0; c < 3; ++c) {
         const double* f = star.opposite();
@@ -49,7 +40,7 @@ bool AngleAscent::target(const TetMesh& mesh, int32_t v, const StarTable& star, 
     Vec3 gradient;
     for (int i = 0; i < 3; ++i) {
         const Vec3 e = h * Vec3::Unit(i);
-        gradient[i] = (badness_at(x0 + e) - badness_at(x0 - e)) / (2.0 * h);
+        gradient[i] = (worst_cosine_at(x0 + e) - worst_cosine_at(x0 - e)) / (2.0 * h);
     }
     const double length = gradient.norm();
     if (!(length > 0.0) || !std::isfinite(length)) return false;

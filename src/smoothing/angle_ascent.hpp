@@ -4,8 +4,8 @@
 // converged a tet with an angle outside [a, 180 - a] may still be fixed by
 // moving one of its vertices away from it -- what optimisation-based
 // smoothing (Freitag and Ollivier-Gooch 1997) does for the worst tet of a
-// star.  Not in the three papers: BODT_MODE_BODT adds it once a step has
-// left the mesh's smallest angle where it was (BODT_PARAM_ASCENT_ANGLE).
+// star.  Not in the three papers: BODT_MODE_BODT adds it from its second
+// step on (BODT_PARAM_ASCENT_ANGLE).
 #pragma once
 
 #include "mesh/tet_mesh.hpp"
@@ -28,7 +28,7 @@ public:
     bool target(const TetMesh& mesh, int32_t v, const StarTable& star, const ShapeCache& shapes, Vec3& target) const;
 
 private:
-    double bad_cosine_;  // cos a: a tet is bad when its badness exceeds it
+    double bad_cosine_;  // cos a: a tet is bad when its worst_cosine exceeds it
 };
 
 }  // namespace bodt

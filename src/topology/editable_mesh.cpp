@@ -182,7 +182,7 @@ void EditableMesh::bound_sines(const std::vector<TetShape>& shapes) {
     for (size_t t = 0; t < shapes.size() && t < sine_floor_.size(); ++t) {
         const TetShape& s = shapes[t];
         if (!(s.stretch > 0.0)) continue;
-        const double c = std::max(std::abs(s.cosines.of_min), std::abs(s.cosines.of_max));
+        const double c = worst_cosine(s.cosines);
         sine_floor_[t] = std::sqrt(std::max(0.0, 1.0 - c * c)) - kMargin;
     }
 }
