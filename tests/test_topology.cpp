@@ -1879,6 +1879,66 @@ void test_inner_edge_split(void**) {
     CHECK(failed.unrefined.size() == 1 && failed.unrefined[0] == flat, "%zu tets recorded", failed.unrefined.size());
 }
 
+// A star cavity (CavityGrowth::Star) grows from the tet holding the point
+// through every face whose tet with the point would not beat the goal,
+// never across the surface or an interface: at the centroid of each tet of
+// a jittered two-region box, with half the tet's own worst sine as the goal, the
+// plans made hold their seed, stay in its region, give positively oriented
+// tets that beat the goal on every face the cavity could have grown
+// through, and a valid mesh.
+void test_star_cavity(void**) {
+    const char* what = "star cavity";
+    test_mesh tm{};
+    assert_int_equal(tm_make_cubes(&tm, 4, 1.0, nullptr, nullptr, 0.3, 9), 0);
+    Input in = from_test_mesh(tm, nullptr);
+    tm_free(&tm);
+    for (const Tet& q : in.tets) {
+        double x = 0.0;
+        for (int32_t v : q) x += 0.25 * in.points[v].x();
+        in.regions.push_back(x < 0.5 ? 1 : 2);
+    }
+    mark_box_sides(in, 1.0);
+    const Case c = make_case(in);
+    const Reference ref = reference_of(c);
+    const TopologyRules rules = loose_rules();
+    int made = 0, grown = 0;
+    for (int32_t t = 0; t < c.mesh.num_tets(); ++t) {
+        EditableMesh em(c.mesh, c.classes);
+        const bodt::TetPoints seed = em.tet_points(t);
+        const Vec3 p = 0.25 * (seed[0] + seed[1] + seed[2] + seed[3]);
+        const double goal = 0.5 * bodt::min_dihedral_sine(seed);
+        const bodt::CavityPlan plan = bodt::plan_cavity(em, t, p, rules, 0.0, bodt::CavityGrowth::Star, goal);
+        if (!plan.valid()) continue;
+        CHECK(plan.cavity.front() == t, "tet %d: the cavity starts at tet %d", t, plan.cavity.front());
+        for (int32_t k : plan.cavity)
+            CHECK(em.region(k) == em.region(t), "tet %d: the cavity crosses the interface", t);
+        grown += plan.cavity.size() > 1;
+        for (const Tet& q : plan.fresh) {
+            bodt::TetPoints pts;
+            int at = -1;
+            for (int i = 0; i < 4; ++i) {
+                if (q[i] < 0) at = i;
+                pts[i] = q[i] < 0 ? p : em.point(q[i]);
+            }
+            const double sine = bodt::min_dihedral_sine(pts);
+            CHECK(sine > 0.0, "tet %d: a new tet is not positively oriented", t);
+            const auto& f = bodt::kFaceVertex[at];
+            const FaceKey face = FaceKey::of(q[f[0]], q[f[1]], q[f[2]]);
+            int32_t pair[2];
+            const bool inner = em.face_tets(face, pair) == 2 && em.region(pair[0]) == em.region(pair[1]) &&
+                               !em.has_marker(face);
+            CHECK(!inner || sine > goal, "tet %d: a new tet on an inner face has sine %g, the goal %g", t, sine, goal);
+        }
+        bodt::insert_planned(em, plan);
+        check_valid(em, ref, what);
+        ++made;
+    }
+    print_message("star cavity: %d of %d centroids inserted, %d cavities grown past their seed\n", made,
+                  c.mesh.num_tets(), grown);
+    CHECK(made > c.mesh.num_tets() / 2, "only %d centroids inserted", made);
+    CHECK(grown > c.mesh.num_tets() / 2, "only %d cavities grew", grown);
+}
+
 // Inserting a point into its cavity (Bowyer-Watson within a region):
 // plans that are made give a valid mesh with the point joined to the
 // cavity's boundary; a point outside the region, a cavity that misses the
@@ -2792,6 +2852,7 @@ int main(void) {
         cmocka_unit_test(test_classify_bad_tet),
         cmocka_unit_test(test_insertion),
         cmocka_unit_test(test_inner_edge_split),
+        cmocka_unit_test(test_star_cavity),
         cmocka_unit_test(test_flip_pass),
         cmocka_unit_test(test_collapse_pass),
         cmocka_unit_test(test_collapse_curved),

@@ -144,9 +144,13 @@ void Improver::sweep_laplace(TetMesh& mesh, ShapeCache& shapes, StepReport& repo
 // ODT, B-ODT basic and B-ODT: the modes differ only in which vertices move
 // (ODT: inner ones) and how the surface vertices were classified.  B-ODT
 // adds, from its second step on, the angle ascent (smoothing/angle_ascent.hpp)
-// for the inner vertices of bad tets: the first step is the papers'
-// smoothing and connectivity changes alone, which make the large changes
-// the ascent would otherwise get in the way of.
+// for the vertices of bad tets: the first step is the papers' smoothing and
+// connectivity changes alone, which make the large changes the ascent
+// would otherwise get in the way of.  A boundary vertex takes the ascent
+// only where the boundary keeps its shape (BodtSmoother::last_basis) and
+// its smoothing move did not move it: ascent moves along the boundary
+// while the tangent-plane smoothing still moves it lowered the minimum of
+// the jittered boxes (34.0 to 31.7 degrees on box12.jitter).
 void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCache& shapes,
                           StepReport& report) const {
     const VertexClasses& cls = classes(mesh, surfaces);
@@ -178,7 +182,9 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
                 },
                 s.report);
             Vec3 target;
-            if (ascent && cls.cls[v] == VertexClass::Interior && ascent_move.target(mesh, v, star, shapes, target)) {
+            const bool inner = cls.cls[v] == VertexClass::Interior;
+            const MoveBasis* basis = inner || moved ? nullptr : s.smoother.last_basis(v);
+            if (ascent && (inner || basis) && ascent_move.target(mesh, v, star, shapes, basis, target)) {
                 // The star table holds no point of v: still v's star after an ODT move.
                 double distance = 0.0;
                 if (s.guard.move_gathered(mesh, v, target, s.faces, distance) != MoveOutcome::Rejected) {

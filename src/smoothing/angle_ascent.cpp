@@ -9,7 +9,7 @@ namespace bodt {
 AngleAscent::AngleAscent(double angle_deg) : bad_cosine_(std::cos(angle_deg * M_PI / 180.0)) {}
 
 bool AngleAscent::target(const TetMesh& mesh, int32_t v, const StarTable& star, const ShapeCache& shapes,
-                         Vec3& target) const {
+                         const MoveBasis* basis, Vec3& target) const {
     const int32_t* tets = mesh.star_begin(v);
     const size_t n = star.size();
     size_t worst = n;
@@ -41,6 +41,11 @@ bool AngleAscent::target(const TetMesh& mesh, int32_t v, const StarTable& star, 
     for (int i = 0; i < 3; ++i) {
         const Vec3 e = h * Vec3::Unit(i);
         gradient[i] = (worst_cosine_at(x0 + e) - worst_cosine_at(x0 - e)) / (2.0 * h);
+    }
+    if (basis) {  // orthonormal columns
+        Vec3 along = Vec3::Zero();
+        for (Eigen::Index c = 0; c < basis->cols(); ++c) along += basis->col(c).dot(gradient) * basis->col(c);
+        gradient = along;
     }
     const double length = gradient.norm();
     if (!(length > 0.0) || !std::isfinite(length)) return false;

@@ -1,4 +1,4 @@
-// A move for an inner vertex of a bad tet that the ODT update leaves bad:
+// A move for a vertex of a bad tet that the ODT update leaves bad:
 // up the gradient of that tet's worst dihedral angle.  ODT (eq. 3 of paper
 // 000) minimises the interpolation error, not the worst angle; where it has
 // converged a tet with an angle outside [a, 180 - a] may still be fixed by
@@ -10,6 +10,7 @@
 
 #include "mesh/tet_mesh.hpp"
 #include "quality/mesh_quality.hpp"
+#include "smoothing/bodt_model.hpp"
 #include "smoothing/star_table.hpp"
 
 #include <cstdint>
@@ -21,11 +22,16 @@ public:
     // Tets with an angle outside [angle_deg, 180 - angle_deg] are bad.
     explicit AngleAscent(double angle_deg);
 
-    // Where v (an inner vertex, its star in `star`, the shapes of the
-    // mesh's tets in `shapes`) goes to raise the worst angle of its worst
-    // star tet: false when no star tet is bad.  The move is half as long as
-    // the shortest edge of that tet at v; the guard shortens it.
-    bool target(const TetMesh& mesh, int32_t v, const StarTable& star, const ShapeCache& shapes, Vec3& target) const;
+    // Where v (its star in `star`, the shapes of the mesh's tets in
+    // `shapes`) goes to raise the worst angle of its worst star tet: false
+    // when no star tet is bad.  The move is half as long as the shortest
+    // edge of that tet at v; the guard shortens it.  An inner vertex has no
+    // `basis`; a boundary vertex moves in the span of its (orthonormal
+    // columns: the directions that keep the regions' volumes and the
+    // feature line, BodtSmoother::last_basis), up the gradient projected
+    // onto it.
+    bool target(const TetMesh& mesh, int32_t v, const StarTable& star, const ShapeCache& shapes,
+                const MoveBasis* basis, Vec3& target) const;
 
 private:
     double bad_cosine_;  // cos a: a tet is bad when its worst_cosine exceeds it

@@ -31,6 +31,40 @@ Vec3 BodtSmoother::line_direction(const TetMesh& mesh, int32_t v, const std::arr
     return d.norm() > 1e-6 * side[0].norm() * side[1].norm() ? d : chord;
 }
 
+namespace {
+
+// Relative to a length, how far a point may be off a plane or a line and
+// still count as on it: far above round-off, far below anything a
+// finite-element solution could tell.
+constexpr double kFlat = 1e-6;
+
+// How many planes through x0 the ring triangles (x0, y_i, y_i+1) lie in,
+// counted up to 3.
+int ring_planes(const TetMesh& mesh, const Vec3& x0, const std::vector<int32_t>& ring) {
+    Vec3 planes[2];
+    int count = 0;
+    const size_t m = ring.size();
+    for (size_t i = 0; i < m; ++i) {
+        const Vec3 a = mesh.points[ring[i]] - x0, b = mesh.points[ring[(i + 1) % m]] - x0;
+        const Vec3 n = a.cross(b);
+        const double scale = std::max(a.norm(), b.norm());
+        if (!(n.norm() > 0.0)) return 3;
+        const Vec3 u = n.normalized();
+        // On plane k when both points are: their heights over it are small.
+        const auto on = [&](const Vec3& p) {
+            return std::abs(a.dot(p)) <= kFlat * scale && std::abs(b.dot(p)) <= kFlat * scale;
+        };
+        bool known = false;
+        for (int k = 0; k < count && !known; ++k) known = on(planes[k]);
+        if (known) continue;
+        if (count == 2) return 3;
+        planes[count++] = u;
+    }
+    return count;
+}
+
+}  // namespace
+
 bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) {
     // The directions that keep every region's volume: the complement of the
     // span of the ring normals (one normal for a boundary or interface
@@ -87,6 +121,7 @@ bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) 
 Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star, Vec3& target,
                           std::vector<FaceKey>& surface_faces) {
     surface_faces.clear();
+    basis_vertex_ = -1;
     const VertexClass c = classes_.cls[v];
     if (c != VertexClass::Interior && c != VertexClass::Surface && c != VertexClass::FeatureLine) return Plan::Stay;
 
@@ -101,6 +136,9 @@ Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star,
     }
 
     normals_.clear();
+    // The boundary keeps its shape where v moves if its rings are flat (a
+    // surface vertex) or two planes meeting along a straight feature line.
+    bool flat = c == VertexClass::Surface || classes_.line[v][0] >= 0;
     for (const int32_t* k = surfaces_.begin(v); k != surfaces_.end(v); ++k) {
         // The first surface's ring is kept for line_direction.
         std::vector<int32_t>& ring = k == surfaces_.begin(v) ? first_ring_ : ring_;
@@ -113,14 +151,19 @@ Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star,
             surface_faces.push_back(FaceKey::of(v, a, b));
         }
         normals_.push_back(n);
+        flat = flat && ring_planes(mesh, x0, ring) <= (c == VertexClass::Surface ? 1 : 2);
+    }
+    if (flat && c == VertexClass::FeatureLine) {
+        const Vec3 a = mesh.points[classes_.line[v][0]] - x0, b = mesh.points[classes_.line[v][1]] - x0;
+        flat = a.cross(b).norm() <= kFlat * a.norm() * b.norm();
     }
     std::sort(surface_faces.begin(), surface_faces.end());
     surface_faces.erase(std::unique(surface_faces.begin(), surface_faces.end()), surface_faces.end());
 
-    MoveBasis basis;
-    if (!move_basis(mesh, v, basis)) return Plan::Stay;
+    if (!move_basis(mesh, v, basis_)) return Plan::Stay;
+    if (flat) basis_vertex_ = v;
     Vec3 move;
-    if (!minimize_on(model, basis, move)) return Plan::NotPositiveDefinite;
+    if (!minimize_on(model, basis_, move)) return Plan::NotPositiveDefinite;
     target = x0 + move;
     return move_unless_converged(move, model);
 }

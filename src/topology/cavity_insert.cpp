@@ -1,7 +1,8 @@
-// Point insertion into its Delaunay cavity (Bowyer 1981, Watson 1981),
-// confined to one region: the tets whose circumsphere holds the point,
-// grown from the tet holding it without crossing a surface or interface
-// face, replaced by the point joined to the cavity's boundary faces.
+// Point insertion into a cavity confined to one region, grown from the tet
+// holding the point without crossing a surface or interface face, and
+// replaced by the point joined to the cavity's boundary faces: the Delaunay
+// cavity (Bowyer 1981, Watson 1981), the tets whose circumsphere holds the
+// point, or a star cavity, grown where a face would make a poor tet.
 #include "topology/op_support.hpp"
 #include "topology/operations.hpp"
 
@@ -46,7 +47,7 @@ int32_t locate(const EditableMesh& mesh, int32_t start, const Vec3& p, std::arra
 }  // namespace
 
 CavityPlan plan_cavity(const EditableMesh& mesh, int32_t seed, const Vec3& p, const TopologyRules& rules,
-                       double must_exceed) {
+                       double must_exceed, CavityGrowth growth, double star_goal) {
     CavityPlan plan;
     if (!p.allFinite()) return plan;
     // A point far from the seed (the circumcentre of a flat tet) makes a
@@ -61,12 +62,20 @@ CavityPlan plan_cavity(const EditableMesh& mesh, int32_t seed, const Vec3& p, co
     std::vector<int32_t>& cavity = plan.cavity;
     std::vector<std::array<int32_t, 4>> next;
     const auto member = [&cavity](int32_t n) { return std::find(cavity.begin(), cavity.end(), n) != cavity.end(); };
+    // Star growth: through a face whose tet with p would not beat star_goal.
+    const auto poor_with_p = [&](int32_t t, int i) {
+        TetPoints pts = mesh.tet_points(t);
+        pts[i] = p;
+        return min_dihedral_sine(pts) <= star_goal;
+    };
     cavity.push_back(home);
     for (size_t k = 0; k < cavity.size(); ++k) {
         next.push_back({});
         for (int i = 0; i < 4; ++i) {
             const int32_t n = next[k][i] = across(mesh, cavity[k], i);
-            if (n < 0 || member(n) || !in_circumsphere(mesh.tet_points(n), p)) continue;
+            if (n < 0 || member(n)) continue;
+            if (growth == CavityGrowth::Delaunay ? !in_circumsphere(mesh.tet_points(n), p) : !poor_with_p(cavity[k], i))
+                continue;
             if (cavity.size() == kMaxCavity) return {};
             cavity.push_back(n);
         }

@@ -86,12 +86,17 @@ int32_t split_edge(EditableMesh& mesh, int32_t a, int32_t b, Vec3 p, const Topol
 // face p is first projected onto its plane.  Returns the new vertex or -1.
 int32_t split_face(EditableMesh& mesh, const FaceKey& face, Vec3 p, const TopologyRules& rules, double must_exceed);
 
-// Point insertion (Bowyer-Watson), planned then made: a new interior
-// vertex at p, in place of the tets whose circumsphere holds p, grown from
-// the tet holding p (walked to from `seed`) without crossing a surface,
-// interface or marked face.  No plan unless the cavity holds `seed`, p
-// sees every face of its boundary (each new tet acceptable under `rules`
-// and `must_exceed`), and no vertex would be left inside.
+// Point insertion, planned then made: a new interior vertex at p, in place
+// of a cavity grown from the tet holding p (walked to from `seed`) without
+// crossing a surface, interface or marked face.  Delaunay growth
+// (Bowyer-Watson) takes the tets whose circumsphere holds p; Star growth
+// goes through each face whose tet with p would have a worst dihedral sine
+// of at most `star_goal` (on a mesh that is not Delaunay, such as one with
+// slivers whose four vertices lie on the boundary, the circumspheres reach
+// far and their cavity rarely is star-shaped from p).  No plan unless the
+// cavity holds `seed`, p sees every face of its boundary (each new tet
+// acceptable under `rules` and `must_exceed`), and no vertex would be left
+// inside.
 struct CavityPlan {
     std::vector<int32_t> cavity;     // the tets replaced; the first holds p
     std::vector<Tet> fresh;          // the new tets, -1 for the new vertex
@@ -99,8 +104,9 @@ struct CavityPlan {
     Vec3 point = Vec3::Zero();
     bool valid() const { return !fresh.empty(); }
 };
+enum class CavityGrowth { Delaunay, Star };
 CavityPlan plan_cavity(const EditableMesh& mesh, int32_t seed, const Vec3& p, const TopologyRules& rules,
-                       double must_exceed);
+                       double must_exceed, CavityGrowth growth = CavityGrowth::Delaunay, double star_goal = 0.0);
 // Makes a valid plan of the mesh as it is; returns the new vertex (-1: no plan).
 int32_t insert_planned(EditableMesh& mesh, const CavityPlan& plan);
 

@@ -394,12 +394,19 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
                 return false;
             };
             // A tet whose four vertices lie on the boundary cannot be mended
-            // by moving them: an edge of it through the inside, split at
-            // its midpoint, gives it an interior vertex that the relocation
-            // in try_change moves.  Tried once while the tet stands, as the
-            // circumcentre: tried again every step, the splits doubled the
-            // time of the coarse `-p` meshes' steps.
+            // by moving them: an interior vertex, which the relocation in
+            // try_change moves, goes in at its centroid, into the star
+            // cavity of the tets it would not beat, or else at the midpoint
+            // of an edge of it through the inside.  Tried once while the tet
+            // stands, as the circumcentre: tried again every step, the
+            // splits doubled the time of the coarse `-p` meshes' steps.
             const auto split_inner = [&] {
+                if (!unrefinable) {
+                    const Vec3 centroid = 0.25 * (p[0] + p[1] + p[2] + p[3]);
+                    const CavityPlan plan =
+                        plan_cavity(mesh, t, centroid, loose, 0.0, CavityGrowth::Star, mesh.tet_sine(t));
+                    if (plan.valid() && insert([&] { return made_vertex(insert_planned(mesh, plan)); })) return true;
+                }
                 if (!unrefinable)
                     for (const auto& e : inner_edges(mesh, t))
                         if (insert([&] {
