@@ -532,8 +532,11 @@ enum bodt_param {
      * last changed), a sweep also moves each inner vertex of a tet with a
      * dihedral angle outside [this, 180 - this] degrees up the gradient of
      * that tet's worst angle, guarded as every move is: where ODT has
-     * converged with a bad tet left, this raises the smallest angle.  0
-     * turns it off (the paper's smoothing alone). */
+     * converged with a bad tet left, this raises the smallest angle.  A
+     * surface or feature-line vertex moves so too, along its plane or
+     * line, where that keeps the boundary's shape (flat around it, or a
+     * straight feature line between two planes) and its own smoothing move
+     * did not move it.  0 turns it off (the paper's smoothing alone). */
     BODT_PARAM_ASCENT_ANGLE = 23
 };
 
