@@ -1879,6 +1879,22 @@ void test_inner_edge_split(void**) {
     CHECK(failed.unrefined.size() == 1 && failed.unrefined[0] == flat, "%zu tets recorded", failed.unrefined.size());
 }
 
+// The unit box of 4^3 cubes, interior vertices jittered, in two regions
+// split at x = 0.5, its sides marked.
+Case jittered_halves(double jitter, uint64_t seed) {
+    test_mesh tm{};
+    assert_int_equal(tm_make_cubes(&tm, 4, 1.0, nullptr, nullptr, jitter, seed), 0);
+    Input in = from_test_mesh(tm, nullptr);
+    tm_free(&tm);
+    for (const Tet& q : in.tets) {
+        double x = 0.0;
+        for (int32_t v : q) x += 0.25 * in.points[v].x();
+        in.regions.push_back(x < 0.5 ? 1 : 2);
+    }
+    mark_box_sides(in, 1.0);
+    return make_case(in);
+}
+
 // A star cavity (CavityGrowth::Star) grows from the tet holding the point
 // through every face whose tet with the point would not beat the goal,
 // never across the surface or an interface: at the centroid of each tet of
@@ -1888,17 +1904,7 @@ void test_inner_edge_split(void**) {
 // through, and a valid mesh.
 void test_star_cavity(void**) {
     const char* what = "star cavity";
-    test_mesh tm{};
-    assert_int_equal(tm_make_cubes(&tm, 4, 1.0, nullptr, nullptr, 0.3, 9), 0);
-    Input in = from_test_mesh(tm, nullptr);
-    tm_free(&tm);
-    for (const Tet& q : in.tets) {
-        double x = 0.0;
-        for (int32_t v : q) x += 0.25 * in.points[v].x();
-        in.regions.push_back(x < 0.5 ? 1 : 2);
-    }
-    mark_box_sides(in, 1.0);
-    const Case c = make_case(in);
+    const Case c = jittered_halves(0.3, 9);
     const Reference ref = reference_of(c);
     const TopologyRules rules = loose_rules();
     int made = 0, grown = 0;
@@ -1946,18 +1952,7 @@ void test_star_cavity(void**) {
 // circumcentre of a short-edge tet, which no split breaks.
 void test_cavity_insertion(void**) {
     const char* what = "cavity insertion";
-    test_mesh tm{};
-    assert_int_equal(tm_make_cubes(&tm, 4, 1.0, nullptr, nullptr, 0.2, 7), 0);
-    Input in = from_test_mesh(tm, nullptr);
-    tm_free(&tm);
-    // two regions, split at x = 0.5
-    for (const Tet& q : in.tets) {
-        double x = 0.0;
-        for (int32_t v : q) x += 0.25 * in.points[v].x();
-        in.regions.push_back(x < 0.5 ? 1 : 2);
-    }
-    mark_box_sides(in, 1.0);
-    const Case c = make_case(in);
+    const Case c = jittered_halves(0.2, 7);
     const Reference ref = reference_of(c);
     const TopologyRules rules = loose_rules();
     int made = 0, next_to_interface = 0, across_interface = 0;
