@@ -419,7 +419,7 @@ static void test_angle_ascent_boundary(void **state) {
 
 static void test_odt_moves_interior_only(void **state) {
     (void)state;
-    const shape s = make_sliding(5, 1.0, NULL, NULL, 0.3, 0.3, 23);
+    const shape s = make_sliding(5, 1.0, NULL, NULL, 0.3, 0.3, 21);
     const test_mesh *m = s.m;
     bodt_mesh *h = create_smoothing(m, BODT_MODE_ODT);
     const int32_t interior = tm_count_interior(m);

@@ -147,7 +147,7 @@ void Improver::sweep_laplace(TetMesh& mesh, ShapeCache& shapes, StepReport& repo
 // for the vertices of bad tets: the first step is the papers' smoothing and
 // connectivity changes alone, which make the large changes the ascent
 // would otherwise get in the way of.  A boundary vertex takes the ascent
-// only where the boundary keeps its shape (BodtSmoother::last_basis) and
+// only where the boundary keeps its shape (BodtSmoother::ascent_basis) and
 // its smoothing move did not move it: ascent moves along the boundary
 // while the tangent-plane smoothing still moves it lowered the minimum of
 // the jittered boxes (34.0 to 31.7 degrees on box12.jitter).
@@ -158,6 +158,7 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
         BodtSmoother smoother;
         MoveGuard guard;
         std::vector<FaceKey> faces;
+        MoveBasis basis;  // a boundary vertex's ascent directions
         StepReport report;
     };
     const bool interior_only = mode_ == BODT_MODE_ODT;
@@ -169,7 +170,7 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
     settled_.begin_sweep(mesh.points.size(), mesh.colouring().colours());
     const auto states = coloured_sweep(
-        mesh, threads, State{BodtSmoother(surfaces, cls, params_.tolerance), MoveGuard(guard_settings(), &shapes), {}, {}},
+        mesh, threads, State{BodtSmoother(surfaces, cls, params_.tolerance), MoveGuard(guard_settings(), &shapes), {}, {}, {}},
         [&](State& s, int32_t v, int32_t colour) {
             if ((interior_only && cls.cls[v] != VertexClass::Interior) || settled_.settled(mesh, v)) return;
             StarTable& star = s.guard.star();
@@ -181,10 +182,12 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
                     return s.guard.move_gathered(mesh, v, target, s.faces, distance);
                 },
                 s.report);
-            Vec3 target;
             const bool inner = cls.cls[v] == VertexClass::Interior;
-            const MoveBasis* basis = inner || moved ? nullptr : s.smoother.last_basis(v);
-            if (ascent && (inner || basis) && ascent_move.target(mesh, v, star, shapes, basis, target)) {
+            const size_t worst = ascent && (inner || !moved) ? ascent_move.worst_tet(mesh, v, star, shapes) : star.size();
+            const bool along = worst < star.size() && !inner && s.smoother.ascent_basis(mesh, v, s.basis);
+            Vec3 target;
+            if ((inner || along) && worst < star.size() &&
+                ascent_move.target(mesh, v, star, worst, inner ? nullptr : &s.basis, target)) {
                 // The star table holds no point of v: still v's star after an ODT move.
                 double distance = 0.0;
                 if (s.guard.move_gathered(mesh, v, target, s.faces, distance) != MoveOutcome::Rejected) {

@@ -8,8 +8,7 @@ namespace bodt {
 
 AngleAscent::AngleAscent(double angle_deg) : bad_cosine_(std::cos(angle_deg * M_PI / 180.0)) {}
 
-bool AngleAscent::target(const TetMesh& mesh, int32_t v, const StarTable& star, const ShapeCache& shapes,
-                         const MoveBasis* basis, Vec3& target) const {
+size_t AngleAscent::worst_tet(const TetMesh& mesh, int32_t v, const StarTable& star, const ShapeCache& shapes) const {
     const int32_t* tets = mesh.star_begin(v);
     const size_t n = star.size();
     size_t worst = n;
@@ -21,7 +20,12 @@ bool AngleAscent::target(const TetMesh& mesh, int32_t v, const StarTable& star, 
             worst = k;
         }
     }
-    if (worst == n) return false;
+    return worst;
+}
+
+bool AngleAscent::target(const TetMesh& mesh, int32_t v, const StarTable& star, size_t worst, const MoveBasis* basis,
+                         Vec3& target) const {
+    const size_t n = star.size();
     const Vec3 x0 = mesh.points[v];
     const auto worst_cosine_at = [&](const Vec3& x) {
         return worst_cosine(shape_of(star_tet_kernel(star.opposite(), star.at(), n, worst, coords(x))).cosines);

@@ -22,16 +22,18 @@ public:
     // Tets with an angle outside [angle_deg, 180 - angle_deg] are bad.
     explicit AngleAscent(double angle_deg);
 
-    // Where v (its star in `star`, the shapes of the mesh's tets in
-    // `shapes`) goes to raise the worst angle of its worst star tet: false
-    // when no star tet is bad.  The move is half as long as the shortest
-    // edge of that tet at v; the guard shortens it.  An inner vertex has no
-    // `basis`; a boundary vertex moves in the span of its (orthonormal
-    // columns: the directions that keep the regions' volumes and the
-    // feature line, BodtSmoother::last_basis), up the gradient projected
-    // onto it.
-    bool target(const TetMesh& mesh, int32_t v, const StarTable& star, const ShapeCache& shapes,
-                const MoveBasis* basis, Vec3& target) const;
+    // The index in v's star (`star`, the shapes of the mesh's tets in
+    // `shapes`) of its worst tet if that is bad, else star.size().
+    size_t worst_tet(const TetMesh& mesh, int32_t v, const StarTable& star, const ShapeCache& shapes) const;
+
+    // Where v goes to raise the worst angle of its star tet `worst` (from
+    // worst_tet): false if the gradient vanishes.  The move is half as long
+    // as the shortest edge of that tet at v; the guard shortens it.  An
+    // inner vertex has no `basis`; a boundary vertex moves in the span of
+    // its orthonormal columns (BodtSmoother::ascent_basis), up the
+    // gradient projected onto it.
+    bool target(const TetMesh& mesh, int32_t v, const StarTable& star, size_t worst, const MoveBasis* basis,
+                Vec3& target) const;
 
 private:
     double bad_cosine_;  // cos a: a tet is bad when its worst_cosine exceeds it

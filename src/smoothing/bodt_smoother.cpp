@@ -47,23 +47,44 @@ int ring_planes(const TetMesh& mesh, const Vec3& x0, const std::vector<int32_t>&
     for (size_t i = 0; i < m; ++i) {
         const Vec3 a = mesh.points[ring[i]] - x0, b = mesh.points[ring[(i + 1) % m]] - x0;
         const Vec3 n = a.cross(b);
-        const double scale = std::max(a.norm(), b.norm());
         if (!(n.norm() > 0.0)) return 3;
-        const Vec3 u = n.normalized();
+        const double scale = std::max(a.norm(), b.norm());
         // On plane k when both points are: their heights over it are small.
-        const auto on = [&](const Vec3& p) {
-            return std::abs(a.dot(p)) <= kFlat * scale && std::abs(b.dot(p)) <= kFlat * scale;
+        const auto on = [&](const Vec3& u) {
+            return std::abs(a.dot(u)) <= kFlat * scale && std::abs(b.dot(u)) <= kFlat * scale;
         };
         bool known = false;
         for (int k = 0; k < count && !known; ++k) known = on(planes[k]);
         if (known) continue;
         if (count == 2) return 3;
-        planes[count++] = u;
+        planes[count++] = n.normalized();
     }
     return count;
 }
 
 }  // namespace
+
+bool BodtSmoother::ascent_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) {
+    const VertexClass c = classes_.cls[v];
+    const bool line = c == VertexClass::FeatureLine && classes_.line[v][0] >= 0;
+    if (c != VertexClass::Surface && !line) return false;
+    const Vec3& x0 = mesh.points[v];
+    normals_.clear();
+    for (const int32_t* k = surfaces_.begin(v); k != surfaces_.end(v); ++k) {
+        std::vector<int32_t>& ring = k == surfaces_.begin(v) ? first_ring_ : ring_;  // as in target()
+        surfaces_.surface(*k).one_ring(v, ring);
+        if (ring_planes(mesh, x0, ring) > (line ? 2 : 1)) return false;
+        Vec3 n = Vec3::Zero();  // the ring normal, as add_ring_triangle sums it
+        for (size_t i = 0; i < ring.size(); ++i)
+            n += 0.5 * (mesh.points[ring[i]] - x0).cross(mesh.points[ring[(i + 1) % ring.size()]] - x0);
+        normals_.push_back(n);
+    }
+    if (line) {
+        const Vec3 a = mesh.points[classes_.line[v][0]] - x0, b = mesh.points[classes_.line[v][1]] - x0;
+        if (a.cross(b).norm() > kFlat * a.norm() * b.norm()) return false;
+    }
+    return move_basis(mesh, v, basis);
+}
 
 bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) {
     // The directions that keep every region's volume: the complement of the
@@ -121,7 +142,6 @@ bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) 
 Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star, Vec3& target,
                           std::vector<FaceKey>& surface_faces) {
     surface_faces.clear();
-    basis_vertex_ = -1;
     const VertexClass c = classes_.cls[v];
     if (c != VertexClass::Interior && c != VertexClass::Surface && c != VertexClass::FeatureLine) return Plan::Stay;
 
@@ -136,9 +156,6 @@ Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star,
     }
 
     normals_.clear();
-    // The boundary keeps its shape where v moves if its rings are flat (a
-    // surface vertex) or two planes meeting along a straight feature line.
-    bool flat = c == VertexClass::Surface || classes_.line[v][0] >= 0;
     for (const int32_t* k = surfaces_.begin(v); k != surfaces_.end(v); ++k) {
         // The first surface's ring is kept for line_direction.
         std::vector<int32_t>& ring = k == surfaces_.begin(v) ? first_ring_ : ring_;
@@ -151,19 +168,14 @@ Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star,
             surface_faces.push_back(FaceKey::of(v, a, b));
         }
         normals_.push_back(n);
-        flat = flat && ring_planes(mesh, x0, ring) <= (c == VertexClass::Surface ? 1 : 2);
-    }
-    if (flat && c == VertexClass::FeatureLine) {
-        const Vec3 a = mesh.points[classes_.line[v][0]] - x0, b = mesh.points[classes_.line[v][1]] - x0;
-        flat = a.cross(b).norm() <= kFlat * a.norm() * b.norm();
     }
     std::sort(surface_faces.begin(), surface_faces.end());
     surface_faces.erase(std::unique(surface_faces.begin(), surface_faces.end()), surface_faces.end());
 
-    if (!move_basis(mesh, v, basis_)) return Plan::Stay;
-    if (flat) basis_vertex_ = v;
+    MoveBasis basis;
+    if (!move_basis(mesh, v, basis)) return Plan::Stay;
     Vec3 move;
-    if (!minimize_on(model, basis_, move)) return Plan::NotPositiveDefinite;
+    if (!minimize_on(model, basis, move)) return Plan::NotPositiveDefinite;
     target = x0 + move;
     return move_unless_converged(move, model);
 }

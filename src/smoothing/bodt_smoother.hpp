@@ -28,19 +28,19 @@ public:
     Plan target(const TetMesh& mesh, int32_t v, const StarTable& star, Vec3& target,
                 std::vector<FaceKey>& surface_faces);
 
+    // The directions surface or feature-line vertex v may take the angle
+    // ascent along (those of move_basis), when a move along them keeps the
+    // boundary's shape: v's rings flat, or two planes meeting along a
+    // straight feature line.  False elsewhere (curved parts, corners).
+    // Walks v's rings again: meant for the few vertices of bad tets.
+    bool ascent_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis);
+
     // The vertices, among those of `before`, whose targets read something
     // besides points that differs between two sets of classes and surfaces
     // of one mesh (whose connectivity changed, every vertex keeping its
     // index): their class, feature-line neighbours, and for a surface or
     // feature-line vertex the surfaces it lies on and its one-ring on each,
     // in order (the order of the sums).
-    // The directions of move_basis for the vertex of the last target()
-    // call, if it is v, a surface or feature-line vertex that has them, and
-    // a move along them keeps the boundary's shape (flat rings, a straight
-    // feature line between two planes): the angle ascent's directions for
-    // v.  Else null.
-    const MoveBasis* last_basis(int32_t v) const { return basis_vertex_ == v ? &basis_ : nullptr; }
-
     static std::vector<int32_t> read_differently(const VertexClasses& before, const RegionSurfaces& surfaces_before,
                                                  const VertexClasses& after, const RegionSurfaces& surfaces_after);
 
@@ -60,8 +60,6 @@ private:
     std::vector<Vec3> normals_;  // one ring normal sum_i S_i n_i per surface at v (eq. B.1)
     std::vector<FaceKey> faces_;
     std::vector<double> terms_;  // add_star()'s scratch
-    MoveBasis basis_;            // last_basis()
-    int32_t basis_vertex_ = -1;
 };
 
 }  // namespace bodt

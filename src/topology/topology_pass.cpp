@@ -406,14 +406,13 @@ TopologyCounts improve_topology(EditableMesh& mesh, const TopologySettings& s, F
                     const CavityPlan plan =
                         plan_cavity(mesh, t, centroid, loose, 0.0, CavityGrowth::Star, mesh.tet_sine(t));
                     if (plan.valid() && insert([&] { return made_vertex(insert_planned(mesh, plan)); })) return true;
-                }
-                if (!unrefinable)
                     for (const auto& e : inner_edges(mesh, t))
                         if (insert([&] {
                                 const Vec3 mid = 0.5 * (mesh.point(e[0]) + mesh.point(e[1]));
                                 return made_vertex(split_edge(mesh, e[0], e[1], mid, loose, 0.0));
                             }))
                             return true;
+                }
                 unrefined.push_back(quad);
                 return false;
             };
