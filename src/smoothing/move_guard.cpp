@@ -14,6 +14,12 @@ Vec3 face_normal(const TetMesh& mesh, const FaceKey& f) {
 // Star tet s with the vertex at x (star_tet_kernel); its stretch and
 // cosines go to column s of `after` (3 rows of n).  Returns whether it
 // passes the guard.
+BODT_KERNEL bool shape_passes(const TetKernel& k, const TetShape& shape, double floor, const CosineRange& before,
+                              bool never_worse) {
+    return (k.positive > 0.0) & !(shape.stretch < floor) &
+           !(never_worse & ((shape.cosines.of_min > before.of_min) | (shape.cosines.of_max < before.of_max)));
+}
+
 BODT_KERNEL bool tet_check(const double* opposite, const double* at, size_t n, size_t s, const Coords& x, double floor,
                            const CosineRange& before, bool never_worse, double* after) {
     const TetKernel k = star_tet_kernel(opposite, at, n, s, x);
@@ -21,8 +27,7 @@ BODT_KERNEL bool tet_check(const double* opposite, const double* at, size_t n, s
     after[s] = shape.stretch;
     after[n + s] = shape.cosines.of_min;
     after[2 * n + s] = shape.cosines.of_max;
-    return (k.positive > 0.0) & !(shape.stretch < floor) &
-           !(never_worse & ((shape.cosines.of_min > before.of_min) | (shape.cosines.of_max < before.of_max)));
+    return shape_passes(k, shape, floor, before, never_worse);
 }
 
 // Every star tet at once, in a loop the compiler vectorises; returns the
@@ -44,7 +49,44 @@ size_t first_failing(const double* opposite, const double* at, size_t n, Coords 
     return first;
 }
 
+// Star tet s with the vertex at each of kPlaces places (3 rows: x, y, z):
+// failed[j] = 1 where it fails the guard.  One pass of the vectorised
+// kernel over the places costs about what one place does alone.
+BODT_VECTOR_CLONES
+void fails_at(const double* opposite, const double* at, size_t n, size_t s, const double* places, double floor,
+              CosineRange before, bool never_worse, double* failed) {
+    constexpr size_t m = MoveGuard::kPlaces;
+#pragma omp simd
+    for (size_t j = 0; j < m; ++j) {
+        const TetKernel k = star_tet_kernel(opposite, at, n, s, {places[j], places[m + j], places[2 * m + j]});
+        failed[j] = shape_passes(k, shape_of(k), floor, before, never_worse) ? 0.0 : 1.0;
+    }
+}
+
 }  // namespace
+
+uint64_t MoveGuard::failing_attempts(size_t k, const Vec3& start, const Vec3& first_step, int from) const {
+    constexpr size_t m = kPlaces;
+    uint64_t failing = 0;
+    Vec3 step = first_step;
+    for (int a = 0; a < from; ++a) step *= 0.5;
+    for (int a0 = from; a0 <= settings_.backtrack_steps; a0 += static_cast<int>(m)) {
+        std::array<double, 3 * m> places;
+        const int count = std::min(static_cast<int>(m), settings_.backtrack_steps + 1 - a0);
+        for (int j = 0; j < static_cast<int>(m); ++j) {
+            const Vec3 p = start + step;  // as move_gathered places v
+            for (int r = 0; r < 3; ++r) places[r * m + j] = p[r];
+            if (j + 1 < count) step *= 0.5;
+        }
+        step *= 0.5;
+        std::array<double, m> failed;
+        fails_at(star_.opposite(), star_.at(), star_.size(), k, places.data(), floor_[k], star_before_,
+                 settings_.never_worse, failed.data());
+        for (int j = 0; j < count; ++j)
+            if (failed[j] != 0.0) failing |= uint64_t{1} << (a0 + j);
+    }
+    return failing;
+}
 
 bool MoveGuard::tet_passes(size_t k, const Coords& x) {
     return tet_check(star_.opposite(), star_.at(), star_.size(), k, x, floor_[k], star_before_, settings_.never_worse,
@@ -102,8 +144,15 @@ MoveOutcome MoveGuard::move_gathered(TetMesh& mesh, int32_t v, const Vec3& targe
         floor_[k] = std::min(settings_.min_stretch, shape.stretch);
     }
     const Vec3 start = mesh.points[v];
-    Vec3 step = target - start;
+    const Vec3 full = target - start;
+    Vec3 step = full;
+    // Attempts known to fail: where a star tet that failed an earlier one
+    // fails too (checked for all the later attempts at once).  Skipping
+    // them changes no verdict, only its cost.
+    uint64_t failing = 0;
+    size_t screened = n;  // the last tet checked at every later attempt
     for (int attempt = 0; attempt <= settings_.backtrack_steps; ++attempt, step *= 0.5) {
+        if (failing >> attempt & 1) continue;
         mesh.points[v] = start + step;
         if (acceptable(mesh, mesh.points[v], surface_faces)) {
             if (cache_)
@@ -111,6 +160,10 @@ MoveOutcome MoveGuard::move_gathered(TetMesh& mesh, int32_t v, const Vec3& targe
                     (*cache_)[static_cast<size_t>(star[k])] = {after_[k], {after_[n + k], after_[2 * n + k]}};
             distance = step.norm();
             return attempt == 0 ? MoveOutcome::Moved : MoveOutcome::Shortened;
+        }
+        if (last_failed_ < n && last_failed_ != screened && attempt < settings_.backtrack_steps) {
+            screened = last_failed_;
+            failing |= failing_attempts(screened, start, full, attempt + 1);
         }
     }
     mesh.points[v] = start;

@@ -40,7 +40,13 @@ public:
                               double& distance);
     StarTable& star() { return star_; }
 
+    // How many trial places of one tet are checked together (a multiple of the vector width).
+    static constexpr size_t kPlaces = 4;
+
 private:
+    // Bit a set for each attempt a >= from (of the moves by first_step,
+    // halved a times, from start) at which star tet k fails the guard.
+    uint64_t failing_attempts(size_t k, const Vec3& start, const Vec3& first_step, int from) const;
     // Star tet k passes the guard with v at x (a scalar check, for the tets
     // most likely to fail).
     bool tet_passes(size_t k, const Coords& x);
