@@ -27,7 +27,14 @@
 //   (d) volume    tangent moves keep the star's volume to 1e-14 relative
 //   (e) eq. (3)   minimize_on with the identity = eq. (3) computed here = the
 //                 volume-weighted circumcentre average
+//   (f) ascent    where moves up the worst tet's worst-angle gradient
+//                 (AngleAscent::target, halved up to 16 times, taken when
+//                 the star's worst angle rises) are stuck, the steepest
+//                 ascent (steepest_target) still raises it, and no unit
+//                 direction of 2000 raises the angles within kActiveAngle
+//                 of the worst faster to first order
 #include "smoothing/bodt_model.hpp"
+#include "smoothing/angle_ascent.hpp"
 
 #include "mesh_gen.h"
 
@@ -541,6 +548,94 @@ void test_minimize_on_refuses_indefinite(void**) {
     assert_false(bodt::minimize_on(m, all, move));
 }
 
+
+// The star's worst |cosine| (worst_cosine of its worst tet) with x0 at x.
+double star_worst_cosine(const Star& s, const Vec3& x) {
+    double worst = 0.0;
+    for (size_t k = 0; k < s.tets.size(); ++k) {
+        bodt::TetPoints t = s.tets[k];
+        t[s.local[k]] = x;
+        worst = std::max(worst, bodt::worst_cosine(bodt::tet_shape(t).cosines));
+    }
+    return worst;
+}
+
+// (f) on inner stars with x0 pushed off centre.
+void test_steepest_ascent(void**) {
+    Rng rng(808);
+    const bodt::AngleAscent ascent(30.0);
+    int stuck = 0, raised = 0;
+    for (int k = 0; k < kInnerStars; ++k) {
+        Star s = inner_star(rng, k % 2 == 0);
+        bodt::StarTable table;
+        table.resize(s.tets.size());
+        for (size_t q = 0; q < s.tets.size(); ++q) table.set(q, s.tets[q], s.local[q]);
+        bodt::TetMesh mesh;  // target() reads only v's point
+        mesh.points = {s.x0 + 0.5 * s.radius * Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1))};
+        const auto worst_tet = [&](const Vec3& x) {
+            size_t worst = 0;
+            double most = -1.0;
+            for (size_t q = 0; q < s.tets.size(); ++q) {
+                bodt::TetPoints t = s.tets[q];
+                t[s.local[q]] = x;
+                const double b = bodt::worst_cosine(bodt::tet_shape(t).cosines);
+                if (b > most) most = b, worst = q;
+            }
+            return worst;
+        };
+        if (star_worst_cosine(s, mesh.points[0]) >= 1.0) continue;  // pushed out of its star
+        // Up the single gradient until no halving of its move raises the worst angle.
+        for (int iter = 0; iter < 500; ++iter) {
+            const Vec3 x = mesh.points[0];
+            Vec3 target;
+            bool better = false;
+            if (ascent.target(mesh, 0, table, worst_tet(x), nullptr, target)) {
+                Vec3 step = target - x;
+                for (int h = 0; h <= 16 && !better; ++h, step *= 0.5)
+                    better = star_worst_cosine(s, x + step) < star_worst_cosine(s, x);
+                if (better) mesh.points[0] = x + 2.0 * step;  // undo the last halving
+            }
+            if (!better) break;
+        }
+        const Vec3 x = mesh.points[0];
+        const double f0 = star_worst_cosine(s, x);
+        Vec3 target;
+        if (!ascent.steepest_target(mesh, 0, table, worst_tet(x), nullptr, target)) continue;
+        ++stuck;
+        // The dihedral angles within kActiveAngle of the star's worst, and
+        // the slope of the largest of their |cosines| along a unit
+        // direction (each by its own difference quotient).
+        const double active = std::cos(std::acos(f0) + bodt::AngleAscent::kActiveAngle);
+        const double eps = 1e-7 * s.radius;
+        const auto slope = [&](const Vec3& w) {
+            double most = -1e300;
+            for (size_t q = 0; q < s.tets.size(); ++q) {
+                bodt::TetPoints t = s.tets[q], moved = t;
+                t[s.local[q]] = x;
+                moved[s.local[q]] = x + eps * w;
+                const bodt::TetKernel a = bodt::tet_kernel(t), b = bodt::tet_kernel(moved);
+                for (int e = 0; e < 6; ++e)
+                    if (std::fabs(a.cos[e]) >= active)
+                        most = std::max(most, (std::fabs(b.cos[e]) - std::fabs(a.cos[e])) / eps);
+            }
+            return most;
+        };
+        const Vec3 u = (target - x).normalized();
+        const double steepest = slope(u);
+        if (steepest < 0.0 && star_worst_cosine(s, x + eps * u) < f0) ++raised;
+        else print_message("star %d: slope %g along the steepest ascent\n", k, steepest);
+        for (int d = 0; d < 2000; ++d) {
+            const Vec3 w = Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)).normalized();
+            const double other = slope(w);
+            if (other < steepest - 1e-4 * std::fabs(steepest))
+                fail_msg("star %d: direction %d descends at %g, the steepest ascent at %g", k, d, other, steepest);
+        }
+    }
+    print_message("stuck stars with a steepest ascent %d, raised %d of %d\n", stuck, raised, kInnerStars);
+    assert_true(stuck >= kInnerStars / 5);
+    assert_int_equal(raised, stuck);
+}
+
 }  // namespace
 
 int main() {
@@ -553,6 +648,7 @@ int main() {
         cmocka_unit_test(test_tangent_moves_keep_volume),
         cmocka_unit_test(test_inner_star_odt),
         cmocka_unit_test(test_minimize_on_refuses_indefinite),
+        cmocka_unit_test(test_steepest_ascent),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -185,21 +185,24 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
             const bool inner = cls.cls[v] == VertexClass::Interior;
             const size_t worst = ascent && (inner || !moved) ? ascent_move.worst_tet(mesh, v, star, shapes) : star.size();
             const bool along = worst < star.size() && !inner && s.smoother.ascent_basis(mesh, v, s.basis);
-            Vec3 target;
-            if ((inner || along) && worst < star.size() &&
-                ascent_move.target(mesh, v, star, worst, inner ? nullptr : &s.basis, target)) {
+            const MoveBasis* basis = inner ? nullptr : &s.basis;
+            const auto ascend = [&](bool steepest) {
+                Vec3 target;
+                if (!(steepest ? ascent_move.steepest_target(mesh, v, star, worst, basis, target)
+                               : ascent_move.target(mesh, v, star, worst, basis, target)))
+                    return false;
                 // The star table holds no point of v: still v's star after an ODT move.
                 double distance = 0.0;
-                if (s.guard.move_gathered(mesh, v, target, s.faces, distance) != MoveOutcome::Rejected) {
-                    // Counted once, as moved, even when its ODT move was refused.
-                    if (!moved) {
-                        s.report.moves_rejected = refused;
-                        ++s.report.vertices_moved;
-                    }
-                    s.report.max_move = std::max(s.report.max_move, distance);
-                    moved = true;
+                if (s.guard.move_gathered(mesh, v, target, s.faces, distance) == MoveOutcome::Rejected) return false;
+                // Counted once, as moved, even when its ODT move was refused.
+                if (!moved) {
+                    s.report.moves_rejected = refused;
+                    ++s.report.vertices_moved;
                 }
-            }
+                s.report.max_move = std::max(s.report.max_move, distance);
+                return moved = true;
+            };
+            if ((inner || along) && worst < star.size() && !ascend(false)) ascend(true);
             if (moved) settled_.moved(v, settled_.tick(colour));
             else settled_.stayed(v, settled_.tick(colour));
         });

@@ -34,6 +34,18 @@ public:
     // gradient projected onto it.
     bool target(const TetMesh& mesh, int32_t v, const StarTable& star, size_t worst, const MoveBasis* basis,
                 Vec3& target) const;
+    // Where to try when the guard refused that move (another angle of the
+    // star, nearly as bad, would have fallen below the worst): along the
+    // steepest ascent of the star's nearly worst angles together, as long
+    // and in the same span.  False when there is none, or only one such
+    // angle.
+    bool steepest_target(const TetMesh& mesh, int32_t v, const StarTable& star, size_t worst, const MoveBasis* basis,
+                         Vec3& target) const;
+
+    // Dihedral angles within this of the star's worst (radians) count as
+    // active in the ascent; at most kMaxActive of them.
+    static constexpr double kActiveAngle = 0.5 * M_PI / 180.0;
+    static constexpr size_t kMaxActive = 12;
 
 private:
     double bad_cosine_;  // cos a: a tet is bad when its worst_cosine exceeds it
