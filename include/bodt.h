@@ -532,7 +532,10 @@ enum bodt_param {
      * last changed), a sweep also moves each inner vertex of a tet with a
      * dihedral angle outside [this, 180 - this] degrees up the gradient of
      * that tet's worst angle, guarded as every move is: where ODT has
-     * converged with a bad tet left, this raises the smallest angle.  A
+     * converged with a bad tet left, this raises the smallest angle.  When
+     * the guard refuses that move (another angle around the vertex, nearly
+     * as bad, would fall below the worst), the vertex tries the steepest
+     * ascent of all its angles within half a degree of the worst.  A
      * surface or feature-line vertex moves so too, along its plane or
      * line, where that keeps the boundary's shape (flat around it, or a
      * straight feature line between two planes) and its own smoothing move
