@@ -71,17 +71,15 @@ bool least_norm_point(const Vec3* g, size_t m, Vec3& p) {
     return false;
 }
 
-}  // namespace
-
-namespace {
-
 // The shortest edge of star tet `worst` at x0 (its corners other than the vertex).
 double shortest_edge(const StarTable& star, size_t worst, const Vec3& x0) {
     const size_t n = star.size();
     const double* f = star.opposite();
     double shortest = std::numeric_limits<double>::infinity();
-    for (size_t c = 0; c < 3; ++c)
-        shortest = std::min(shortest, (Vec3(f[c * n + worst], f[(3 + c) * n + worst], f[(6 + c) * n + worst]) - x0).norm());
+    for (size_t c = 0; c < 3; ++c) {
+        const Vec3 y(f[c * n + worst], f[(3 + c) * n + worst], f[(6 + c) * n + worst]);
+        shortest = std::min(shortest, (y - x0).norm());
+    }
     return shortest;
 }
 

@@ -68,6 +68,7 @@ void fails_at(const double* opposite, const double* at, size_t n, size_t s, cons
 uint64_t MoveGuard::failing_attempts(size_t k, const Vec3& start, const Vec3& first_step, int from) const {
     constexpr size_t m = kPlaces;
     uint64_t failing = 0;
+    if (settings_.backtrack_steps >= 64) return failing;  // one bit per attempt (the parameter allows 50)
     Vec3 step = first_step;
     for (int a = 0; a < from; ++a) step *= 0.5;
     for (int a0 = from; a0 <= settings_.backtrack_steps; a0 += static_cast<int>(m)) {
