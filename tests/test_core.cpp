@@ -23,12 +23,22 @@
 //                         visited; the colouring is proper and its counts of
 //                         lower pairs are right; an exception in a visit
 //                         stops the sweep and comes out of it
+//   MoveGuard             against a guard written out here (the full move,
+//                         then halved, the first place where every star tet
+//                         is positive, above its stretch floor and, with
+//                         never-worse, inside the star's extreme angles):
+//                         the same outcome, place and distance, bit for bit,
+//                         for random moves of every inner vertex of a
+//                         jittered box, with and without the shape cache,
+//                         and the cache then holds the moved tets' shapes
 #include "common/error.hpp"
 #include "mesh/boundary_surface.hpp"
 #include "mesh/curve_order.hpp"
 #include "mesh/mesh_builder.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "quality/mesh_quality.hpp"
 #include "quality/tet_geometry.hpp"
+#include "smoothing/move_guard.hpp"
 #include "smoothing/coloured_sweep.hpp"
 
 #include "bodt.h"
@@ -595,6 +605,86 @@ void test_coloured_sweep_order(void**) {
     tm_free(&m);
 }
 
+
+// ------------------------------------------------------------- move guard
+
+struct GuardVerdict {
+    bodt::MoveOutcome outcome;
+    Vec3 at;
+    double distance;
+};
+
+// The guard as its header states it, tet by tet.
+GuardVerdict reference_guard(const bodt::TetMesh& mesh, int32_t v, const Vec3& target, const bodt::GuardSettings& s) {
+    std::vector<bodt::TetShape> before;
+    double of_min = -1.0, of_max = 1.0;
+    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t) {
+        before.push_back(bodt::tet_shape(mesh.tet_points(*t)));
+        of_min = std::max(of_min, before.back().cosines.of_min);
+        of_max = std::min(of_max, before.back().cosines.of_max);
+    }
+    const Vec3 start = mesh.points[v];
+    Vec3 step = target - start;
+    for (int attempt = 0; attempt <= s.backtrack_steps; ++attempt, step *= 0.5) {
+        const Vec3 x = start + step;
+        bool ok = true;
+        size_t k = 0;
+        for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v) && ok; ++t, ++k) {
+            bodt::TetPoints p = mesh.tet_points(*t);
+            for (Vec3& c : p)
+                if (c == start) c = x;
+            const bodt::TetKernel kernel = bodt::tet_kernel(p);
+            const bodt::TetShape shape = bodt::shape_of(kernel);
+            ok = kernel.sign > 0 && !(shape.stretch < std::min(s.min_stretch, before[k].stretch)) &&
+                 !(s.never_worse && (shape.cosines.of_min > of_min || shape.cosines.of_max < of_max));
+        }
+        if (ok) return {attempt == 0 ? bodt::MoveOutcome::Moved : bodt::MoveOutcome::Shortened, x, step.norm()};
+    }
+    return {bodt::MoveOutcome::Rejected, start, 0.0};
+}
+
+void test_move_guard_reference(void**) {
+    test_mesh m{};
+    assert_int_equal(tm_make_box(&m, 8, 0.3, 17), 0);
+    const bodt::BuiltMesh built = bodt::build_mesh_in_curve_order(mesh_arrays(m));
+    tm_rng rng;
+    tm_rng_seed(&rng, 99);
+    int counts[3] = {0, 0, 0};
+    for (const bool never_worse : {true, false})
+        for (const bool cached : {true, false}) {
+            bodt::TetMesh mesh = built.mesh;
+            const bodt::GuardSettings settings{1e-3, 6, never_worse};
+            bodt::ShapeCache shapes = bodt::tet_shapes(mesh, 1);
+            bodt::MoveGuard guard(settings, cached ? &shapes : nullptr);
+            const std::vector<bodt::FaceKey> no_faces;
+            for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
+                const Vec3 p = mesh.points[v];
+                if ((p.array() < 1e-12).any() || (p.array() > 1.0 - 1e-12).any()) continue;  // the box's surface
+                // Up to 1.5 cube sizes (1/8) in a random direction: many
+                // moves are shortened or refused.
+                const Vec3 d(tm_rng_uniform(&rng) - 0.5, tm_rng_uniform(&rng) - 0.5, tm_rng_uniform(&rng) - 0.5);
+                const Vec3 target = p + (1.5 / 8.0) * tm_rng_uniform(&rng) * d.normalized();
+                const GuardVerdict want = reference_guard(mesh, v, target, settings);
+                double distance = -1.0;
+                const bodt::MoveOutcome got = guard.move(mesh, v, target, no_faces, distance);
+                assert_int_equal(static_cast<int>(got), static_cast<int>(want.outcome));
+                assert_true(mesh.points[v] == want.at);
+                assert_true(distance == want.distance);
+                ++counts[static_cast<int>(got)];
+                if (cached)
+                    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t) {
+                        const bodt::TetShape now = bodt::tet_shape(mesh.tet_points(*t));
+                        const bodt::TetShape& kept = shapes[static_cast<size_t>(*t)];
+                        assert_true(kept.stretch == now.stretch && kept.cosines.of_min == now.cosines.of_min &&
+                                    kept.cosines.of_max == now.cosines.of_max);
+                    }
+            }
+        }
+    print_message("guard: %d moved, %d shortened, %d refused\n", counts[0], counts[1], counts[2]);
+    for (const int c : counts) assert_true(c > 50);
+    tm_free(&m);
+}
+
 }  // namespace
 
 int main() {
@@ -612,6 +702,7 @@ int main() {
         cmocka_unit_test(test_curve_order_tets),
         cmocka_unit_test(test_curve_order_mesh),
         cmocka_unit_test(test_coloured_sweep_order),
+        cmocka_unit_test(test_move_guard_reference),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }
