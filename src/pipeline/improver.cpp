@@ -168,6 +168,12 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
     if (ascent && steps_on_data_ == 1) settled_.clear();
     const AngleAscent ascent_move(params_.ascent_angle);
     const int threads = sweep_threads(params_.threads, mesh.tets.size());
+    // An ascent move may trade a star's largest angle for its smallest:
+    // the largest may grow up to the mesh's largest when the sweep began,
+    // so the mesh's extreme angles still never get worse, and never past
+    // 180 degrees - ascent_angle, so no tet turns bad at that end.
+    const double ascent_largest_cosine =
+        ascent ? std::max(quality_extremes(shapes, threads).cosines.of_max, ascent_move.largest_cosine()) : 1.0;
     settled_.begin_sweep(mesh.points.size(), mesh.colouring().colours());
     const auto states = coloured_sweep(
         mesh, threads, State{BodtSmoother(surfaces, cls, params_.tolerance), MoveGuard(guard_settings(), &shapes), {}, {}, {}},
@@ -193,7 +199,9 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
                     return false;
                 // The star table holds no point of v: still v's star after an ODT move.
                 double distance = 0.0;
-                if (s.guard.move_gathered(mesh, v, target, s.faces, distance) == MoveOutcome::Rejected) return false;
+                if (s.guard.move_gathered(mesh, v, target, s.faces, distance, ascent_largest_cosine) ==
+                    MoveOutcome::Rejected)
+                    return false;
                 // Counted once, as moved, even when its ODT move was refused.
                 if (!moved) {
                     s.report.moves_rejected = refused;

@@ -101,7 +101,7 @@ QualityExtremes quality_extremes(const ShapeCache& shapes, int threads) {
         min_stretch = std::min(min_stretch, s.stretch);
     }
     constexpr double kDegrees = 180.0 / M_PI;
-    return {std::acos(cos_of_min) * kDegrees, std::acos(cos_of_max) * kDegrees, min_stretch};
+    return {std::acos(cos_of_min) * kDegrees, std::acos(cos_of_max) * kDegrees, min_stretch, {cos_of_min, cos_of_max}};
 }
 
 void tet_measures(const TetMesh& mesh, TetMeasure measure, std::vector<double>& out) {

@@ -42,6 +42,9 @@ public:
     bool steepest_target(const TetMesh& mesh, int32_t v, const StarTable& star, size_t worst, const MoveBasis* basis,
                          Vec3& target) const;
 
+    // The cosine of 180 degrees - angle_deg: a tet with a larger angle is bad.
+    double largest_cosine() const { return -bad_cosine_; }
+
     // Dihedral angles within this of the star's worst (radians) count as
     // active in the ascent; at most kMaxActive of them.
     static constexpr double kActiveAngle = 0.5 * M_PI / 180.0;

@@ -121,7 +121,8 @@ MoveOutcome MoveGuard::move(TetMesh& mesh, int32_t v, const Vec3& target, const 
 }
 
 MoveOutcome MoveGuard::move_gathered(TetMesh& mesh, int32_t v, const Vec3& target,
-                                     const std::vector<FaceKey>& surface_faces, double& distance) {
+                                     const std::vector<FaceKey>& surface_faces, double& distance,
+                                     double largest_cosine) {
     normals_.clear();
     for (const FaceKey& f : surface_faces) normals_.push_back(face_normal(mesh, f));
     const size_t n = star_.size();
@@ -144,6 +145,7 @@ MoveOutcome MoveGuard::move_gathered(TetMesh& mesh, int32_t v, const Vec3& targe
         }
         floor_[k] = std::min(settings_.min_stretch, shape.stretch);
     }
+    star_before_.of_max = std::min(star_before_.of_max, largest_cosine);
     const Vec3 start = mesh.points[v];
     const Vec3 full = target - start;
     Vec3 step = full;

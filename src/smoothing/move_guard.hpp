@@ -36,8 +36,10 @@ public:
     MoveOutcome move(TetMesh& mesh, int32_t v, const Vec3& target, const std::vector<FaceKey>& surface_faces,
                      double& distance);
     // The same with v's star already in star() (gathered, as the mesh is).
+    // With never_worse, the star's largest angle may grow up to the angle
+    // whose cosine is `largest_cosine` where that is larger (1: not at all).
     MoveOutcome move_gathered(TetMesh& mesh, int32_t v, const Vec3& target, const std::vector<FaceKey>& surface_faces,
-                              double& distance);
+                              double& distance, double largest_cosine = 1.0);
     StarTable& star() { return star_; }
 
     // How many trial places of one tet are checked together (a multiple of the vector width).
