@@ -438,8 +438,11 @@ enum bodt_param {
     BODT_PARAM_MIN_STRETCH = 3,
     /* int 0/1, default 1: also refuse (or halve) a move that makes the
      * smallest dihedral angle among the tets the vertex touches smaller, or
-     * the largest larger, so no step makes the mesh's extreme angles worse.
-     * 0 lets a mode move as its formula says. */
+     * the largest larger, so no step makes the mesh's extreme angles worse
+     * (BODT_MODE_BODT's angle ascent may let the largest grow up to the
+     * mesh's largest at the start of the sweep, and at most to 180 degrees
+     * minus BODT_PARAM_ASCENT_ANGLE).  0 lets a mode move as its formula
+     * says. */
     BODT_PARAM_NEVER_WORSE = 4,
     /* double, degrees, default 30: a surface edge whose two faces' normals
      * differ by more than this is a feature edge (BODT_MODE_BODT). */
@@ -535,7 +538,10 @@ enum bodt_param {
      * converged with a bad tet left, this raises the smallest angle.  When
      * the guard refuses that move (another angle around the vertex, nearly
      * as bad, would fall below the worst), the vertex tries the steepest
-     * ascent of all its angles within half a degree of the worst.  A
+     * ascent of all its angles within half a degree of the worst.  These
+     * moves may trade the largest angle around the vertex for its smallest:
+     * the largest may grow up to the mesh's largest when the sweep began,
+     * but not past 180 degrees minus this.  A
      * surface or feature-line vertex moves so too, along its plane or
      * line, where that keeps the boundary's shape (flat around it, or a
      * straight feature line between two planes) and its own smoothing move
