@@ -11,15 +11,16 @@ Vec3 face_normal(const TetMesh& mesh, const FaceKey& f) {
     return (mesh.points[f.v[1]] - a).cross(mesh.points[f.v[2]] - a);
 }
 
-// Star tet s with the vertex at x (star_tet_kernel); its stretch and
-// cosines go to column s of `after` (3 rows of n).  Returns whether it
-// passes the guard.
+// A star tet of this kernel and shape passes the guard.
 BODT_KERNEL bool shape_passes(const TetKernel& k, const TetShape& shape, double floor, const CosineRange& before,
                               bool never_worse) {
     return (k.positive > 0.0) & !(shape.stretch < floor) &
            !(never_worse & ((shape.cosines.of_min > before.of_min) | (shape.cosines.of_max < before.of_max)));
 }
 
+// Star tet s with the vertex at x (star_tet_kernel); its stretch and
+// cosines go to column s of `after` (3 rows of n).  Returns whether it
+// passes the guard.
 BODT_KERNEL bool tet_check(const double* opposite, const double* at, size_t n, size_t s, const Coords& x, double floor,
                            const CosineRange& before, bool never_worse, double* after) {
     const TetKernel k = star_tet_kernel(opposite, at, n, s, x);
@@ -65,21 +66,18 @@ void fails_at(const double* opposite, const double* at, size_t n, size_t s, cons
 
 }  // namespace
 
-uint64_t MoveGuard::failing_attempts(size_t k, const Vec3& start, const Vec3& first_step, int from) const {
+uint64_t MoveGuard::failing_attempts(size_t k, const Vec3& start, Vec3 step, int from) const {
     constexpr size_t m = kPlaces;
     uint64_t failing = 0;
     if (settings_.backtrack_steps >= 64) return failing;  // one bit per attempt (the parameter allows 50)
-    Vec3 step = first_step;
-    for (int a = 0; a < from; ++a) step *= 0.5;
     for (int a0 = from; a0 <= settings_.backtrack_steps; a0 += static_cast<int>(m)) {
+        // m places, halving as move_gathered does; those past the last attempt are not read.
         std::array<double, 3 * m> places;
-        const int count = std::min(static_cast<int>(m), settings_.backtrack_steps + 1 - a0);
-        for (int j = 0; j < static_cast<int>(m); ++j) {
-            const Vec3 p = start + step;  // as move_gathered places v
-            for (int r = 0; r < 3; ++r) places[r * m + j] = p[r];
-            if (j + 1 < count) step *= 0.5;
+        for (size_t j = 0; j < m; ++j, step *= 0.5) {
+            const Vec3 p = start + step;
+            for (size_t r = 0; r < 3; ++r) places[r * m + j] = p[static_cast<Eigen::Index>(r)];
         }
-        step *= 0.5;
+        const int count = std::min(static_cast<int>(m), settings_.backtrack_steps + 1 - a0);
         std::array<double, m> failed;
         fails_at(star_.opposite(), star_.at(), star_.size(), k, places.data(), floor_[k], star_before_,
                  settings_.never_worse, failed.data());
@@ -147,8 +145,7 @@ MoveOutcome MoveGuard::move_gathered(TetMesh& mesh, int32_t v, const Vec3& targe
     }
     star_before_.of_max = std::min(star_before_.of_max, largest_cosine);
     const Vec3 start = mesh.points[v];
-    const Vec3 full = target - start;
-    Vec3 step = full;
+    Vec3 step = target - start;
     // Attempts known to fail: where a star tet that failed an earlier one
     // fails too (checked for all the later attempts at once).  Skipping
     // them changes no verdict, only its cost.
@@ -166,7 +163,7 @@ MoveOutcome MoveGuard::move_gathered(TetMesh& mesh, int32_t v, const Vec3& targe
         }
         if (last_failed_ < n && last_failed_ != screened && attempt < settings_.backtrack_steps) {
             screened = last_failed_;
-            failing |= failing_attempts(screened, start, full, attempt + 1);
+            failing |= failing_attempts(screened, start, 0.5 * step, attempt + 1);
         }
     }
     mesh.points[v] = start;

@@ -46,9 +46,10 @@ public:
     static constexpr size_t kPlaces = 4;
 
 private:
-    // Bit a set for each attempt a >= from (of the moves by first_step,
-    // halved a times, from start) at which star tet k fails the guard.
-    uint64_t failing_attempts(size_t k, const Vec3& start, const Vec3& first_step, int from) const;
+    // Bit a set for each attempt a >= from at which star tet k fails the
+    // guard; `step` is attempt from's move from start, halved for each
+    // later one.
+    uint64_t failing_attempts(size_t k, const Vec3& start, Vec3 step, int from) const;
     // Star tet k passes the guard with v at x (a scalar check, for the tets
     // most likely to fail).
     bool tet_passes(size_t k, const Coords& x);
