@@ -20,9 +20,10 @@
 //   coloured_sweep        on 1, 2 and 3 threads every coloured vertex is
 //                         visited once, after each neighbour of lower colour
 //                         was done and never while a neighbour was being
-//                         visited; the colouring is proper and its counts of
-//                         lower pairs are right; an exception in a visit
-//                         stops the sweep and comes out of it
+//                         visited (on 1, in the mesh's sweep_order); the
+//                         colouring is proper and its counts of lower pairs
+//                         are right; an exception in a visit stops the sweep
+//                         and comes out of it
 //   MoveGuard             against a guard written out here (the full move,
 //                         then halved, the first place where every star tet
 //                         is positive, above its stretch floor and, with

@@ -198,6 +198,7 @@ void TetMesh::update_vertex_flags() {
 
 void TetMesh::build_topology(int base, int threads) {
     colouring_.reset();
+    sweep_order_.reset();
     build_incidence();
     build_neighbors(base, threads);  // faster on stars in memory order: ordered after
     order_stars_as_caller();
@@ -206,6 +207,7 @@ void TetMesh::build_topology(int base, int threads) {
 
 void TetMesh::build_topology(std::vector<Tet> known_neighbors) {
     colouring_.reset();
+    sweep_order_.reset();
     build_incidence();
     neighbors = std::move(known_neighbors);
     order_stars_as_caller();
@@ -261,8 +263,14 @@ const VertexColouring& TetMesh::colouring() const {
     return *colouring_;
 }
 
+const std::vector<int32_t>& TetMesh::sweep_order() const {
+    if (!sweep_order_) sweep_order_ = std::make_shared<const std::vector<int32_t>>(bodt::sweep_order(*this, colouring()));
+    return *sweep_order_;
+}
+
 void TetMesh::carry_colouring(const TetMesh& before, const std::vector<int32_t>& changed) {
     if (before.colouring_) colouring_ = std::make_shared<const VertexColouring>(recolour_vertices(*this, *before.colouring_, changed));
+    sweep_order_.reset();
 }
 
 std::vector<SurfaceFace> TetMesh::surface_faces() const {

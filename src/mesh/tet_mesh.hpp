@@ -166,6 +166,9 @@ public:
     // and kept until build_topology (a copy of the mesh shares it).  Not to
     // be called from several threads at once.
     const VertexColouring& colouring() const;
+    // sweep_order(*this, colouring()), made when first asked for and kept
+    // with the colouring (the same rules).
+    const std::vector<int32_t>& sweep_order() const;
     // After a connectivity change that kept the index of every vertex of
     // `before` (EditableMesh::write_to; made vertices after them): the
     // colouring of `before`, if it made one, brought up to date around the
@@ -222,6 +225,7 @@ private:
     bool is_listed_face(int32_t t, int i, const std::vector<uint8_t>& marked) const;
 
     mutable std::shared_ptr<const VertexColouring> colouring_;  // a cache of the connectivity
+    mutable std::shared_ptr<const std::vector<int32_t>> sweep_order_;  // of colouring_
 };
 
 }  // namespace bodt

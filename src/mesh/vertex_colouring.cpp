@@ -106,4 +106,25 @@ VertexColouring recolour_vertices(const TetMesh& mesh, const VertexColouring& be
     return out;
 }
 
+std::vector<int32_t> sweep_order(const TetMesh& mesh, const VertexColouring& colouring) {
+    const std::vector<int32_t>& colour = colouring.colour;
+    const int32_t n = mesh.num_vertices();
+    std::vector<int32_t> pending(colouring.lower), ready, order;
+    order.reserve(static_cast<size_t>(n));
+    for (int32_t s = 0; s < n; ++s) {
+        if (colour[s] < 0 || colouring.lower[s] != 0) continue;
+        ready.push_back(s);
+        while (!ready.empty()) {
+            const int32_t v = ready.back();
+            ready.pop_back();
+            order.push_back(v);
+            // Each (tet, vertex) pair of v's star releases its vertex once.
+            for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
+                for (const int32_t w : mesh.tets[*t])
+                    if (colour[w] > colour[v] && --pending[w] == 0) ready.push_back(w);
+        }
+    }
+    return order;
+}
+
 }  // namespace bodt

@@ -39,4 +39,13 @@ VertexColouring colour_vertices(const TetMesh& mesh);
 VertexColouring recolour_vertices(const TetMesh& mesh, const VertexColouring& before,
                                   const std::vector<int32_t>& changed);
 
+// The coloured vertices in the order a sweep on one thread visits them
+// (smoothing/coloured_sweep.hpp): each right after the last of its
+// neighbours of lower colour (depth first), else the next in internal
+// order that waits for none, so the sweep runs as a narrow front along the
+// curve order.  Any order that visits each vertex after its neighbours of
+// lower colour gives the same sweep; this one is kept with the colouring,
+// so that a sweep on one thread counts no neighbours down.
+std::vector<int32_t> sweep_order(const TetMesh& mesh, const VertexColouring& colouring);
+
 }  // namespace bodt

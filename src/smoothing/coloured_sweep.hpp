@@ -6,7 +6,8 @@
 // soon as its last neighbour of lower colour is done, by the thread that did
 // it, so the sweep runs as a narrow front along the internal (curve) order
 // and finds the stars it reads in the cache, where a sweep colour by colour
-// streams the whole mesh once per colour.
+// streams the whole mesh once per colour.  On one thread that order is
+// the mesh's sweep_order(), made once per connectivity.
 #pragma once
 
 #include "mesh/tet_mesh.hpp"
@@ -53,12 +54,11 @@ void visit_vertex(Body& body, State& state, int32_t v, int32_t colour) {
 
 // The neighbours of lower colour of a vertex are counted by (tet, vertex)
 // pairs of its star (VertexColouring::lower).  After v's visit, each vertex
-// w of higher colour around v is released by its pairs with v,
-// `release(w, pairs)`, which says whether those were w's last ones; w then
-// goes on `ready`.  With `grouped`, the pairs are summed per neighbour
-// first, so that each neighbour takes one subtraction (an atomic one costs
-// more than the summing).
-template <bool grouped, class Release>
+// w of higher colour around v is released by its pairs with v, summed per
+// neighbour first (an atomic subtraction costs more than the summing):
+// `release(w, pairs)` says whether those were w's last ones; w then goes on
+// `ready`.
+template <class Release>
 void release_higher(const TetMesh& mesh, const std::vector<int32_t>& colour, int32_t v,
                     std::vector<std::pair<int32_t, int32_t>>& pairs, std::vector<int32_t>& ready, Release release) {
     const int32_t c = colour[v];
@@ -66,14 +66,10 @@ void release_higher(const TetMesh& mesh, const std::vector<int32_t>& colour, int
     for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
         for (const int32_t w : mesh.tets[*t]) {
             if (colour[w] <= c) continue;
-            if constexpr (grouped) {
-                auto it = pairs.begin();
-                while (it != pairs.end() && it->first != w) ++it;
-                if (it == pairs.end()) pairs.push_back({w, 1});
-                else ++it->second;
-            } else if (release(w, 1)) {
-                ready.push_back(w);
-            }
+            auto it = pairs.begin();
+            while (it != pairs.end() && it->first != w) ++it;
+            if (it == pairs.end()) pairs.push_back({w, 1});
+            else ++it->second;
         }
     for (const auto& [w, k] : pairs)
         if (release(w, k)) ready.push_back(w);
@@ -81,7 +77,7 @@ void release_higher(const TetMesh& mesh, const std::vector<int32_t>& colour, int
 
 // Visits source vertex v (no neighbour of lower colour), then, depth
 // first, every vertex its visits make ready.
-template <bool grouped, class State, class Body, class Release>
+template <class State, class Body, class Release>
 void visit_from(const TetMesh& mesh, const std::vector<int32_t>& colour, int32_t v, Body& body, State& state,
                 std::vector<std::pair<int32_t, int32_t>>& pairs, std::vector<int32_t>& ready, Release release) {
     ready.push_back(v);
@@ -89,7 +85,7 @@ void visit_from(const TetMesh& mesh, const std::vector<int32_t>& colour, int32_t
         const int32_t u = ready.back();
         ready.pop_back();
         visit_vertex(body, state, u, colour[u]);
-        release_higher<grouped>(mesh, colour, u, pairs, ready, release);
+        release_higher(mesh, colour, u, pairs, ready, release);
     }
 }
 
@@ -117,11 +113,7 @@ std::vector<State> coloured_sweep(const TetMesh& mesh, int threads, const State&
     std::vector<int32_t> ready;
     std::vector<std::pair<int32_t, int32_t>> pairs;
     if (threads == 1) {
-        std::vector<int32_t> pending(lower);
-        const auto release = [&pending](int32_t w, int32_t k) { return (pending[w] -= k) == 0; };
-        for (int32_t v = 0; v < n; ++v)
-            if (colour[v] >= 0 && lower[v] == 0)
-                detail::visit_from<false>(mesh, colour, v, body, states[0], pairs, ready, release);
+        for (const int32_t v : mesh.sweep_order()) detail::visit_vertex(body, states[0], v, colour[v]);
         return states;
     }
 
@@ -149,7 +141,7 @@ std::vector<State> coloured_sweep(const TetMesh& mesh, int threads, const State&
                 const int32_t end = std::min(n, begin + kRun);
                 for (int32_t v = begin; v < end && !failed.load(std::memory_order_relaxed); ++v)
                     if (colour[v] >= 0 && lower[v] == 0)
-                        detail::visit_from<true>(mesh, colour, v, body, states[me], pairs, ready, release);
+                        detail::visit_from(mesh, colour, v, body, states[me], pairs, ready, release);
             }
         } catch (...) {
             errors[me] = std::current_exception();
