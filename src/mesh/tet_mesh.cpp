@@ -199,6 +199,7 @@ void TetMesh::update_vertex_flags() {
 void TetMesh::build_topology(int base, int threads) {
     colouring_.reset();
     sweep_order_.reset();
+    release_lists_.reset();
     build_incidence();
     build_neighbors(base, threads);  // faster on stars in memory order: ordered after
     order_stars_as_caller();
@@ -208,6 +209,7 @@ void TetMesh::build_topology(int base, int threads) {
 void TetMesh::build_topology(std::vector<Tet> known_neighbors) {
     colouring_.reset();
     sweep_order_.reset();
+    release_lists_.reset();
     build_incidence();
     neighbors = std::move(known_neighbors);
     order_stars_as_caller();
@@ -268,9 +270,15 @@ const std::vector<int32_t>& TetMesh::sweep_order() const {
     return *sweep_order_;
 }
 
+const ReleaseLists& TetMesh::release_lists(int threads) const {
+    if (!release_lists_) release_lists_ = std::make_shared<const ReleaseLists>(bodt::release_lists(*this, colouring(), threads));
+    return *release_lists_;
+}
+
 void TetMesh::carry_colouring(const TetMesh& before, const std::vector<int32_t>& changed) {
     if (before.colouring_) colouring_ = std::make_shared<const VertexColouring>(recolour_vertices(*this, *before.colouring_, changed));
     sweep_order_.reset();
+    release_lists_.reset();
 }
 
 std::vector<SurfaceFace> TetMesh::surface_faces() const {

@@ -24,6 +24,7 @@
 namespace bodt {
 
 struct VertexColouring;  // mesh/vertex_colouring.hpp
+struct ReleaseLists;
 
 using Tet = std::array<int32_t, 4>;
 
@@ -169,6 +170,8 @@ public:
     // sweep_order(*this, colouring()), made when first asked for and kept
     // with the colouring (the same rules).
     const std::vector<int32_t>& sweep_order() const;
+    // release_lists(*this, colouring(), threads), the same way.
+    const ReleaseLists& release_lists(int threads) const;
     // After a connectivity change that kept the index of every vertex of
     // `before` (EditableMesh::write_to; made vertices after them): the
     // colouring of `before`, if it made one, brought up to date around the
@@ -226,6 +229,7 @@ private:
 
     mutable std::shared_ptr<const VertexColouring> colouring_;  // a cache of the connectivity
     mutable std::shared_ptr<const std::vector<int32_t>> sweep_order_;  // of colouring_
+    mutable std::shared_ptr<const ReleaseLists> release_lists_;        // of colouring_
 };
 
 }  // namespace bodt

@@ -127,4 +127,54 @@ std::vector<int32_t> sweep_order(const TetMesh& mesh, const VertexColouring& col
     return order;
 }
 
+namespace {
+
+// v's neighbours of higher colour with their pairs, appended to `out`.
+void higher_neighbours(const TetMesh& mesh, const std::vector<int32_t>& colour, int32_t v,
+                       std::vector<std::pair<int32_t, int32_t>>& out) {
+    out.clear();
+    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
+        for (const int32_t w : mesh.tets[*t]) {
+            if (colour[w] <= colour[v]) continue;
+            auto it = out.begin();
+            while (it != out.end() && it->first != w) ++it;
+            if (it == out.end()) out.push_back({w, 1});
+            else ++it->second;
+        }
+}
+
+}  // namespace
+
+ReleaseLists release_lists(const TetMesh& mesh, const VertexColouring& colouring, int threads) {
+    const std::vector<int32_t>& colour = colouring.colour;
+    const int32_t n = mesh.num_vertices();
+    ReleaseLists out;
+    out.offsets.assign(static_cast<size_t>(n) + 1, 0);
+    // Counted, then filled, vertex by vertex (each independent of the others).
+#pragma omp parallel num_threads(threads)
+    {
+        std::vector<std::pair<int32_t, int32_t>> higher;
+#pragma omp for schedule(static)
+        for (int32_t v = 0; v < n; ++v) {
+            higher_neighbours(mesh, colour, v, higher);
+            out.offsets[static_cast<size_t>(v) + 1] = static_cast<int32_t>(higher.size());
+        }
+#pragma omp single
+        {
+            for (int32_t v = 0; v < n; ++v) out.offsets[v + 1] += out.offsets[v];
+            out.vertex.resize(static_cast<size_t>(out.offsets[n]));
+            out.pairs.resize(static_cast<size_t>(out.offsets[n]));
+        }
+#pragma omp for schedule(static)
+        for (int32_t v = 0; v < n; ++v) {
+            higher_neighbours(mesh, colour, v, higher);
+            for (size_t k = 0; k < higher.size(); ++k) {
+                out.vertex[static_cast<size_t>(out.offsets[v]) + k] = higher[k].first;
+                out.pairs[static_cast<size_t>(out.offsets[v]) + k] = higher[k].second;
+            }
+        }
+    }
+    return out;
+}
+
 }  // namespace bodt

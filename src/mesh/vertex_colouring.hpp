@@ -48,4 +48,16 @@ VertexColouring recolour_vertices(const TetMesh& mesh, const VertexColouring& be
 // so that a sweep on one thread counts no neighbours down.
 std::vector<int32_t> sweep_order(const TetMesh& mesh, const VertexColouring& colouring);
 
+// For a sweep on several threads: per vertex v, each neighbour w of higher
+// colour once (in the order its first pair with v comes in v's star) with
+// the number of (tet, vertex) pairs of v's star that are w's, so that v's
+// visit releases w by one subtraction of that many (VertexColouring::lower).
+struct ReleaseLists {
+    std::vector<int32_t> offsets;  // v's entries are [offsets[v], offsets[v + 1])
+    std::vector<int32_t> vertex;   // w
+    std::vector<int32_t> pairs;    // its pairs in v's star
+};
+// Made on `threads` OpenMP threads.
+ReleaseLists release_lists(const TetMesh& mesh, const VertexColouring& colouring, int threads);
+
 }  // namespace bodt

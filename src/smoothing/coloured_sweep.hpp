@@ -7,7 +7,8 @@
 // it, so the sweep runs as a narrow front along the internal (curve) order
 // and finds the stars it reads in the cache, where a sweep colour by colour
 // streams the whole mesh once per colour.  On one thread that order is
-// the mesh's sweep_order(), made once per connectivity.
+// the mesh's sweep_order(); on several, each visit releases the
+// neighbours in its release list: both are made once per connectivity.
 #pragma once
 
 #include "mesh/tet_mesh.hpp"
@@ -52,40 +53,21 @@ void visit_vertex(Body& body, State& state, int32_t v, int32_t colour) {
     else body(state, v);
 }
 
-// The neighbours of lower colour of a vertex are counted by (tet, vertex)
-// pairs of its star (VertexColouring::lower).  After v's visit, each vertex
-// w of higher colour around v is released by its pairs with v, summed per
-// neighbour first (an atomic subtraction costs more than the summing):
-// `release(w, pairs)` says whether those were w's last ones; w then goes on
-// `ready`.
-template <class Release>
-void release_higher(const TetMesh& mesh, const std::vector<int32_t>& colour, int32_t v,
-                    std::vector<std::pair<int32_t, int32_t>>& pairs, std::vector<int32_t>& ready, Release release) {
-    const int32_t c = colour[v];
-    pairs.clear();
-    for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
-        for (const int32_t w : mesh.tets[*t]) {
-            if (colour[w] <= c) continue;
-            auto it = pairs.begin();
-            while (it != pairs.end() && it->first != w) ++it;
-            if (it == pairs.end()) pairs.push_back({w, 1});
-            else ++it->second;
-        }
-    for (const auto& [w, k] : pairs)
-        if (release(w, k)) ready.push_back(w);
-}
-
 // Visits source vertex v (no neighbour of lower colour), then, depth
-// first, every vertex its visits make ready.
+// first, every vertex its visits make ready.  After u's visit, each vertex
+// w of higher colour around u is released by its pairs with u (its entry
+// in u's release list): `release(w, pairs)` says whether those were w's
+// last ones (VertexColouring::lower); w then goes on `ready`.
 template <class State, class Body, class Release>
-void visit_from(const TetMesh& mesh, const std::vector<int32_t>& colour, int32_t v, Body& body, State& state,
-                std::vector<std::pair<int32_t, int32_t>>& pairs, std::vector<int32_t>& ready, Release release) {
+void visit_from(const std::vector<int32_t>& colour, const ReleaseLists& lists, int32_t v, Body& body, State& state,
+                std::vector<int32_t>& ready, Release release) {
     ready.push_back(v);
     while (!ready.empty()) {
         const int32_t u = ready.back();
         ready.pop_back();
         visit_vertex(body, state, u, colour[u]);
-        release_higher(mesh, colour, u, pairs, ready, release);
+        for (int32_t k = lists.offsets[u]; k < lists.offsets[u + 1]; ++k)
+            if (release(lists.vertex[k], lists.pairs[k])) ready.push_back(lists.vertex[k]);
     }
 }
 
@@ -110,13 +92,12 @@ std::vector<State> coloured_sweep(const TetMesh& mesh, int threads, const State&
     constexpr int32_t kRun = 1024;
     threads = std::max(1, std::min(threads, n / (4 * kRun)));
     std::vector<State> states(static_cast<size_t>(threads), initial);
-    std::vector<int32_t> ready;
-    std::vector<std::pair<int32_t, int32_t>> pairs;
     if (threads == 1) {
         for (const int32_t v : mesh.sweep_order()) detail::visit_vertex(body, states[0], v, colour[v]);
         return states;
     }
 
+    const ReleaseLists& lists = mesh.release_lists(threads);
     // The thread whose release takes a vertex's count to 0 visits it: it
     // saw every write of the vertices before it (acquire-release).
     std::unique_ptr<std::atomic<int32_t>[]> pending(new std::atomic<int32_t>[static_cast<size_t>(n)]);
@@ -127,13 +108,14 @@ std::vector<State> coloured_sweep(const TetMesh& mesh, int threads, const State&
     std::atomic<int32_t> next_run{0};
     std::atomic<bool> failed{false};
     std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
-#pragma omp parallel num_threads(threads) firstprivate(ready, pairs)
+#pragma omp parallel num_threads(threads)
     {
 #ifdef _OPENMP
         const size_t me = static_cast<size_t>(omp_get_thread_num());
 #else
         const size_t me = 0;
 #endif
+        std::vector<int32_t> ready;
         try {
             while (!failed.load(std::memory_order_relaxed)) {
                 const int32_t begin = next_run.fetch_add(kRun, std::memory_order_relaxed);
@@ -141,7 +123,7 @@ std::vector<State> coloured_sweep(const TetMesh& mesh, int threads, const State&
                 const int32_t end = std::min(n, begin + kRun);
                 for (int32_t v = begin; v < end && !failed.load(std::memory_order_relaxed); ++v)
                     if (colour[v] >= 0 && lower[v] == 0)
-                        detail::visit_from(mesh, colour, v, body, states[me], pairs, ready, release);
+                        detail::visit_from(colour, lists, v, body, states[me], ready, release);
             }
         } catch (...) {
             errors[me] = std::current_exception();
