@@ -366,7 +366,9 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     const bool surfaces_kept = same_indices && RegionSurfaces::kept_by(mesh, changed, written);
     RegionSurfaces rebuilt;  // only when the surfaces changed
     if (!surfaces_kept) rebuilt.build(changed, 0, BoundarySurface::Strictness::Tolerant);
-    ShapeCache shapes = editable.written_shapes(written, shapes_, changed);
+    // shapes_ is written in place: a failure from here on clears it
+    // (sweep_and_change), to be made again at the next step.
+    editable.write_shapes(written, shapes_, changed);
     changed.take_caller_data(mesh);
     VertexClasses now;
     std::vector<int32_t> touched;
@@ -403,7 +405,6 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     // Nothing below throws.
     mesh = std::move(changed);
     if (!surfaces_kept) surfaces = std::move(rebuilt);
-    shapes_ = std::move(shapes);
     geometry_valid_ = false;
     if (carry) {
         if (surfaces_kept) {

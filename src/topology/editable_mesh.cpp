@@ -36,32 +36,51 @@ std::array<int32_t, 2> other_two(const Tet& q, int32_t a, int32_t b) {
 
 }  // namespace
 
+namespace {
+
+// Room for the tets and vertices the operations add: a per-tet or
+// per-vertex array that had to grow would be copied whole at twice its
+// size, and past glibc's mmap threshold (32 MB) the kernel zeroes the new
+// block's pages (a 1e7-tet mesh's arrays are far past it).
+template <class T>
+void copy_with_room(std::vector<T>& to, const std::vector<T>& from) {
+    to.reserve(from.size() + from.size() / 32);
+    to.assign(from.begin(), from.end());
+}
+
+}  // namespace
+
 EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
-    : points_(mesh.points),
-      cls_(classes.cls),
-      parents_(mesh.new_parents),
-      tets_(mesh.tets),
-      regions_(mesh.regions),
-      sine_(mesh.tets.size(), kUnknownSine),
-      stamp_(mesh.points.size(), 0),
+    : parents_(mesh.new_parents),
       markers_(mesh.face_markers),
       caller_features_(mesh.feature_edges),
       features_(classes.feature_edges),
       input_vertices_(mesh.num_input_vertices()) {
-    if (cls_.size() != points_.size())
-        throw Error(BODT_ERR_NUMERIC, "internal error: " + std::to_string(cls_.size()) + " vertex classes for " +
-                                          std::to_string(points_.size()) + " vertices");
+    if (classes.cls.size() != mesh.points.size())
+        throw Error(BODT_ERR_NUMERIC, "internal error: " + std::to_string(classes.cls.size()) +
+                                          " vertex classes for " + std::to_string(mesh.points.size()) + " vertices");
+    copy_with_room(points_, mesh.points);
+    copy_with_room(cls_, classes.cls);
+    copy_with_room(tets_, mesh.tets);
+    copy_with_room(regions_, mesh.regions);
+    sine_.reserve(tets_.capacity());
+    sine_.assign(tets_.size(), kUnknownSine);
+    stamp_.reserve(points_.capacity());
+    stamp_.assign(points_.size(), 0);
+    pins_.reserve(points_.capacity());
     pins_.resize(points_.size());
     for (size_t v = 0; v < points_.size(); ++v) pins_[v] = mesh.vflags[v] & kPinned;
     for (const auto& [key, ref] : caller_features_) features_.insert(key);
     if (mesh.tet_origin.empty()) {
+        origin_.reserve(tets_.capacity());
         origin_.resize(tets_.size());
         for (size_t t = 0; t < tets_.size(); ++t) origin_[t] = static_cast<int32_t>(t);
     } else {
-        origin_ = mesh.tet_origin;
+        copy_with_room(origin_, mesh.tet_origin);
     }
     // Room for a few more tets at each vertex: flips and splits add some.
     constexpr int32_t kSpare = 4;
+    vt_.reserve(points_.capacity());
     vt_.resize(points_.size());
     size_t at = 0;
     for (size_t v = 0; v < points_.size(); ++v) {
@@ -84,6 +103,10 @@ std::vector<int32_t> EditableMesh::write_to(TetMesh& mesh) const {
     int32_t next = input_vertices_;
     for (int32_t v = 0; v < num_vertices(); ++v)
         renumber[v] = v < input_vertices_ ? v : (vt_[v].size == 0 ? -1 : next++);
+    // Reserved in full: a vector grown by doubling touches twice the pages,
+    // and a block past glibc's mmap threshold (32 MB) is mapped afresh at
+    // each growth, its pages zeroed by the kernel.
+    mesh.points.reserve(static_cast<size_t>(next));
     mesh.points.assign(points_.begin(), points_.begin() + input_vertices_);
     mesh.new_parents.clear();
     std::vector<uint8_t> flags(static_cast<size_t>(next), 0);
@@ -98,6 +121,10 @@ std::vector<int32_t> EditableMesh::write_to(TetMesh& mesh) const {
     mesh.tets.clear();
     mesh.regions.clear();
     mesh.tet_origin.clear();
+    const size_t alive_tets = static_cast<size_t>(std::count_if(tets_.begin(), tets_.end(), [](const Tet& q) { return q[0] >= 0; }));
+    mesh.tets.reserve(alive_tets);
+    mesh.regions.reserve(alive_tets);
+    mesh.tet_origin.reserve(alive_tets);
     for (int32_t t = 0; t < tet_capacity(); ++t) {
         if (!alive(t)) continue;
         const Tet& q = tets_[t];
@@ -149,18 +176,22 @@ std::vector<Tet> EditableMesh::written_neighbors(const std::vector<Tet>& before,
     return out;
 }
 
-std::vector<TetShape> EditableMesh::written_shapes(const std::vector<int32_t>& written,
-                                                   const std::vector<TetShape>& before, const TetMesh& mesh) const {
-    std::vector<TetShape> shapes(mesh.tets.size());
+void EditableMesh::write_shapes(const std::vector<int32_t>& written, std::vector<TetShape>& shapes,
+                                const TetMesh& mesh) const {
+    const size_t before = shapes.size(), count = mesh.tets.size();
+    if (count > shapes.capacity()) shapes.reserve(count + count / 32);  // a little room, as for the tets
+    if (count > before) shapes.resize(count);
+    // Slot t is written to written[t] <= t (the live slots before it), so
+    // slot t is read before anything is written there.
     for (int32_t t = 0; t < tet_capacity(); ++t) {
         const int32_t w = written[t];
         if (w < 0) continue;
         const Tet& q = tets_[t];
-        const bool kept = static_cast<size_t>(t) < before.size() && stamp_[q[0]] == 0 && stamp_[q[1]] == 0 &&
+        const bool kept = static_cast<size_t>(t) < before && stamp_[q[0]] == 0 && stamp_[q[1]] == 0 &&
                           stamp_[q[2]] == 0 && stamp_[q[3]] == 0;
-        shapes[w] = kept ? before[t] : tet_shape(mesh.tet_points(w));
+        shapes[w] = kept ? shapes[t] : tet_shape(mesh.tet_points(w));
     }
-    return shapes;
+    shapes.resize(count);
 }
 
 TetPoints EditableMesh::tet_points(int32_t t) const {
@@ -178,6 +209,7 @@ void EditableMesh::bound_sines(const std::vector<TetShape>& shapes) {
     // round-off (about 1e-15 here); the margin keeps the bound below the
     // sine for every tet whose sine it could pass over.
     constexpr double kMargin = 1e-9;
+    sine_floor_.reserve(tets_.capacity());
     sine_floor_.assign(tets_.size(), kNoSineFloor);
     for (size_t t = 0; t < shapes.size() && t < sine_floor_.size(); ++t) {
         const TetShape& s = shapes[t];

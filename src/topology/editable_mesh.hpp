@@ -66,12 +66,12 @@ public:
     // and those whose neighbour went are looked up.  Neighbours are unique,
     // so a full build gives the same.
     std::vector<Tet> written_neighbors(const std::vector<Tet>& before, const std::vector<int32_t>& written) const;
-    // tet_shapes() of the written tets in `mesh`: a tet that is still there
-    // and none of whose vertices changed (stamp 0) keeps its shape from
-    // `before`, the shapes of the mesh this one was made from (empty: none
-    // known); the others are computed.
-    std::vector<TetShape> written_shapes(const std::vector<int32_t>& written, const std::vector<TetShape>& before,
-                                         const TetMesh& mesh) const;
+    // `shapes`, the shapes of the mesh this one was made from (empty: none
+    // known), made tet_shapes() of the written tets in `mesh`, in place: a
+    // tet that is still there and none of whose vertices changed (stamp 0)
+    // keeps its shape; the others are computed.  In place, since a copy
+    // of a large mesh's shapes costs fresh pages at every step.
+    void write_shapes(const std::vector<int32_t>& written, std::vector<TetShape>& shapes, const TetMesh& mesh) const;
 
     // ---- queries
     int32_t num_vertices() const { return static_cast<int32_t>(points_.size()); }
