@@ -105,7 +105,8 @@
 //   carried_colouring_and_surfaces
 //                        after flips and splits, in a shuffled caller's
 //                        order: the colouring brought up to date is the one
-//                        a full colouring makes; surfaces found kept are
+//                        a full colouring makes, and so are the sweep order
+//                        and release lists from it; surfaces found kept are
 //                        those a full build makes
 //   read_differently     what a B-ODT target reads besides points (class;
 //                        a surface or feature-line vertex's one-rings, in
@@ -2292,7 +2293,8 @@ void test_carried_over(void**) {
 // After changes that keep every vertex's index (flips and splits), in a
 // caller's order other than the internal one: the colouring brought up to
 // date around the changed vertices is the one a full colouring makes, also
-// where a colour changed away from them; the region surfaces are found kept
+// where a colour changed away from them, and so are the sweep order and
+// release lists made from it; the region surfaces are found kept
 // only when a full build gives the same ones (every one-ring as before),
 // and found changed after changes on the surface.
 void test_carried_colouring_and_surfaces(void**) {
@@ -2329,7 +2331,11 @@ void test_carried_colouring_and_surfaces(void**) {
             else ++done;
         }
         const std::vector<int32_t> written = em.written_tets();
-        TetMesh after;
+        // Written over a copy of the mesh before, with the sweep's orders of
+        // that one made: the rebuild must drop them.
+        TetMesh after = before;
+        (void)after.sweep_order();
+        (void)after.release_lists(2);
         write(after);
         std::vector<int32_t> stamped;
         for (int32_t v = 0; v < em.num_vertices(); ++v)
@@ -2340,6 +2346,12 @@ void test_carried_colouring_and_surfaces(void**) {
         assert_true(carried.colour == full.colour);
         assert_true(carried.lower == full.lower);
         assert_int_equal(carried.count, full.count);
+        // What the sweeps take from the colouring, made from the carried one
+        // (the release lists on two threads and on one alike).
+        assert_true(after.sweep_order() == bodt::sweep_order(after, full));
+        const bodt::ReleaseLists& lists = after.release_lists(2);
+        const bodt::ReleaseLists fresh = bodt::release_lists(after, full, 1);
+        assert_true(lists.offsets == fresh.offsets && lists.vertex == fresh.vertex && lists.pairs == fresh.pairs);
         for (int32_t v = 0; v < n; ++v)
             far_recoloured += em.stamp(v) == 0 && carried.colour[v] != colouring.colour[v];
 

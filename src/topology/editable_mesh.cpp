@@ -34,18 +34,22 @@ std::array<int32_t, 2> other_two(const Tet& q, int32_t a, int32_t b) {
     return inversions % 2 == 0 ? std::array<int32_t, 2>{q[pc], q[pd]} : std::array<int32_t, 2>{q[pd], q[pc]};
 }
 
-}  // namespace
+// Room for the tets and vertices the operations add, 1/32 of `size`: a
+// per-tet or per-vertex array that had to grow would be copied whole at
+// twice its size, and past glibc's mmap threshold (32 MB) the kernel zeroes
+// the new block's pages (a 1e7-tet mesh's arrays are far past it).
+size_t with_room(size_t size) { return size + size / 32; }
 
-namespace {
-
-// Room for the tets and vertices the operations add: a per-tet or
-// per-vertex array that had to grow would be copied whole at twice its
-// size, and past glibc's mmap threshold (32 MB) the kernel zeroes the new
-// block's pages (a 1e7-tet mesh's arrays are far past it).
 template <class T>
 void copy_with_room(std::vector<T>& to, const std::vector<T>& from) {
-    to.reserve(from.size() + from.size() / 32);
+    to.reserve(with_room(from.size()));
     to.assign(from.begin(), from.end());
+}
+
+template <class T>
+void fill_with_room(std::vector<T>& to, size_t size, const T& value) {
+    to.reserve(with_room(size));
+    to.assign(size, value);
 }
 
 }  // namespace
@@ -63,25 +67,20 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
     copy_with_room(cls_, classes.cls);
     copy_with_room(tets_, mesh.tets);
     copy_with_room(regions_, mesh.regions);
-    sine_.reserve(tets_.capacity());
-    sine_.assign(tets_.size(), kUnknownSine);
-    stamp_.reserve(points_.capacity());
-    stamp_.assign(points_.size(), 0);
-    pins_.reserve(points_.capacity());
-    pins_.resize(points_.size());
+    fill_with_room(sine_, tets_.size(), kUnknownSine);
+    fill_with_room(stamp_, points_.size(), uint64_t{0});
+    fill_with_room(pins_, points_.size(), uint8_t{0});
     for (size_t v = 0; v < points_.size(); ++v) pins_[v] = mesh.vflags[v] & kPinned;
     for (const auto& [key, ref] : caller_features_) features_.insert(key);
     if (mesh.tet_origin.empty()) {
-        origin_.reserve(tets_.capacity());
-        origin_.resize(tets_.size());
+        fill_with_room(origin_, tets_.size(), int32_t{0});
         for (size_t t = 0; t < tets_.size(); ++t) origin_[t] = static_cast<int32_t>(t);
     } else {
         copy_with_room(origin_, mesh.tet_origin);
     }
     // Room for a few more tets at each vertex: flips and splits add some.
     constexpr int32_t kSpare = 4;
-    vt_.reserve(points_.capacity());
-    vt_.resize(points_.size());
+    fill_with_room(vt_, points_.size(), TetSlot{});
     size_t at = 0;
     for (size_t v = 0; v < points_.size(); ++v) {
         const int32_t n = static_cast<int32_t>(mesh.star_end(static_cast<int32_t>(v)) - mesh.star_begin(static_cast<int32_t>(v)));
@@ -90,7 +89,7 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
     }
     // A little room for the lists that move: the first would otherwise
     // reallocate the whole pool at twice its size.
-    vt_pool_.reserve(at + at / 32);
+    vt_pool_.reserve(with_room(at));
     vt_pool_.resize(at);
     for (int32_t t = 0; t < tet_capacity(); ++t)
         for (int32_t v : tets_[t]) vt_pool_[vt_[v].at + static_cast<size_t>(vt_[v].size++)] = t;  // ascending
@@ -121,10 +120,10 @@ std::vector<int32_t> EditableMesh::write_to(TetMesh& mesh) const {
     mesh.tets.clear();
     mesh.regions.clear();
     mesh.tet_origin.clear();
-    const size_t alive_tets = static_cast<size_t>(std::count_if(tets_.begin(), tets_.end(), [](const Tet& q) { return q[0] >= 0; }));
-    mesh.tets.reserve(alive_tets);
-    mesh.regions.reserve(alive_tets);
-    mesh.tet_origin.reserve(alive_tets);
+    // The slots, live or not: a bound for the live tets without a pass to count them.
+    mesh.tets.reserve(tets_.size());
+    mesh.regions.reserve(tets_.size());
+    mesh.tet_origin.reserve(tets_.size());
     for (int32_t t = 0; t < tet_capacity(); ++t) {
         if (!alive(t)) continue;
         const Tet& q = tets_[t];
@@ -179,7 +178,7 @@ std::vector<Tet> EditableMesh::written_neighbors(const std::vector<Tet>& before,
 void EditableMesh::write_shapes(const std::vector<int32_t>& written, std::vector<TetShape>& shapes,
                                 const TetMesh& mesh) const {
     const size_t before = shapes.size(), count = mesh.tets.size();
-    if (count > shapes.capacity()) shapes.reserve(count + count / 32);  // a little room, as for the tets
+    if (count > shapes.capacity()) shapes.reserve(with_room(count));  // as for the tets
     if (count > before) shapes.resize(count);
     // Slot t is written to written[t] <= t (the live slots before it), so
     // slot t is read before anything is written there.
@@ -209,8 +208,7 @@ void EditableMesh::bound_sines(const std::vector<TetShape>& shapes) {
     // round-off (about 1e-15 here); the margin keeps the bound below the
     // sine for every tet whose sine it could pass over.
     constexpr double kMargin = 1e-9;
-    sine_floor_.reserve(tets_.capacity());
-    sine_floor_.assign(tets_.size(), kNoSineFloor);
+    fill_with_room(sine_floor_, tets_.size(), kNoSineFloor);
     for (size_t t = 0; t < shapes.size() && t < sine_floor_.size(); ++t) {
         const TetShape& s = shapes[t];
         if (!(s.stretch > 0.0)) continue;
