@@ -462,8 +462,13 @@ enum bodt_param {
      * modes. */
     BODT_PARAM_OPS = 8,
     /* int 0/1, default 0: 1 keeps every boundary and interface triangle as
-     * it is (no split, flip or collapse there); only BODT_MODE_BODT_BASIC
-     * and BODT_MODE_BODT change them otherwise: flips retriangulate flat
+     * it is: none of their vertices moves and none of them is split,
+     * flipped or collapsed (only the tets inside change), as a mesh tied
+     * to its neighbours or to boundary conditions by its surface nodes
+     * needs.  With 0, BODT_MODE_BODT_BASIC, BODT_MODE_BODT and
+     * BODT_MODE_NODT move the surface vertices (within the surface; NODT
+     * projects them back onto the input surface), and BODT_MODE_BODT_BASIC
+     * and BODT_MODE_BODT change the triangles too: flips retriangulate flat
      * parts of the surface only, with their markers, or take out a tet
      * lying flat on the surface by two faces when neither face it
      * uncovers turns by more than about 6 degrees, splits put new
@@ -471,7 +476,10 @@ enum bodt_param {
      * of length L (BODT_OP_COLLAPSE) may move the surface off the faces
      * around it by at most 0.1 sqrt(L h), h the mean length of the surface
      * edges there, and turn no face by more than about 6 degrees; never
-     * across a feature edge or corner. */
+     * across a feature edge or corner.  BODT_MODE_LAPLACE, BODT_MODE_ODT
+     * and BODT_MODE_OPT_WEIGHTED never change the surface.
+     * BODT_MODE_PHASED_ODT recovers the surface (paper 002): bodt_step
+     * refuses 1 there with BODT_ERR_INVALID_ARGUMENT. */
     BODT_PARAM_KEEP_SURFACE = 9,
     /* double, degrees, default 15: a tet with a dihedral angle below this or
      * above 180 minus this is bad: BODT_OP_INSERT breaks bad spades, caps

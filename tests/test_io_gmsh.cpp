@@ -24,9 +24,11 @@
 //                   without physical groups: every element saved, tagged
 //                   with its entity only), 4.1 and 2.2: each tet's region
 //                   is its volume's entity tag, 24 tets and volume 1 in
-//                   regions 1 and 2, x <= 1 in region 1; the 20 curves'
-//                   lines are feature edges with ref 0; no marked face, no
-//                   fixed vertex
+//                   regions 1 and 2, x <= 1 in region 1; each
+//                   triangle's marker is its surface's entity tag (11
+//                   surfaces, 4 triangles each, the one between the cubes
+//                   at x = 1 one of them); the 20 curves' lines are
+//                   feature edges with ref 0; no fixed vertex
 //   sparse_tags     hand-written files with sparse, unordered node tags,
 //                   parametric nodes, skipped quads, unknown 2-D types,
 //                   other sections: renumbered in file order, base 0; lines
@@ -297,8 +299,24 @@ void test_entity_regions(void** /*state*/) {
         check_two_cubes(d, what);
         CHECK(d.edge_refs == std::vector<int32_t>(20, 0), "%zu feature edges, expected 20 with ref 0",
               d.edge_refs.size());
-        CHECK(d.triangles.empty() && d.fixed.empty(), "%zu marked faces, %zu fixed vertices", d.triangles.size() / 3,
-              d.fixed.size());
+        // The 11 surfaces (10 outer, 1 between the cubes), 4 triangles each,
+        // marked by their entity tags; the one at x = 1 is a single surface.
+        CHECK(d.triangles.size() == 3 * 44 && d.tri_markers.size() == 44, "%zu marked faces, expected 44",
+              d.tri_markers.size());
+        for (int32_t m = 1; m <= 11; ++m)
+            CHECK(std::count(d.tri_markers.begin(), d.tri_markers.end(), m) == 4, "marker %d not on 4 faces", m);
+        int32_t between = 0;
+        for (size_t f = 0; f < d.tri_markers.size(); ++f) {
+            bool at_one = true;
+            for (int k = 0; k < 3; ++k)
+                at_one = at_one && d.xyz[3 * static_cast<size_t>(d.triangles[3 * f + k] - d.base)] == 1.0;
+            if (!at_one) continue;
+            CHECK(between == 0 || d.tri_markers[f] == between, "the faces at x = 1 carry markers %d and %d", between,
+                  d.tri_markers[f]);
+            between = d.tri_markers[f];
+        }
+        CHECK(between != 0, "no marked face at x = 1");
+        CHECK(d.fixed.empty(), "%zu fixed vertices", d.fixed.size());
     }
 }
 

@@ -28,9 +28,11 @@
  *   smooth only   BODT_OP_SMOOTH against the default ops on the same meshes:
  *                 both valid, angles printed
  *   keep surface  KEEP_SURFACE = 1 with FLIP|INSERT (with and without
- *                 SMOOTH), and BODT_MODE_ODT with FLIP|INSERT: the boundary
- *                 faces (triples and markers) identical; without it the same
- *                 run does change them
+ *                 SMOOTH), SMOOTH alone in the basic, B-ODT and NODT modes,
+ *                 and BODT_MODE_ODT with FLIP|INSERT: the boundary faces
+ *                 (triples and markers) and their vertices (bit for bit)
+ *                 identical; without it the same runs do change them; the
+ *                 phased mode refuses it at bodt_step, the mesh unchanged
  *   parents       base 0 and 1 twins give the same mesh; CSR layout, input
  *                 vertices their own parent, made vertices' weights in [0, 1]
  *                 summing to 1, parents input vertices; origins in range;
@@ -431,6 +433,7 @@ typedef struct run_result {
     double min0, max0, min1, max1;
     int32_t nv0, nt0, nb0, nv1, nt1, nb1;
     int faces_changed; /* the boundary triples or markers differ from the input's */
+    int boundary_moved; /* a vertex of an input boundary face moved */
     int32_t unused1;   /* vertices in no tet at the end */
 } run_result;
 
@@ -561,6 +564,14 @@ static bodt_mesh *checked_run(const bad_mesh *b, const run_opts *o, const char *
                 fail_msg("%s step %d: the boundary faces changed (%d -> %d faces) with the surface kept", name, k,
                          s0.nb, s.nb);
         }
+        /* the vertices of the input's boundary faces: bit for bit with the surface kept */
+        for (int32_t f = 0; f < s0.nb; ++f)
+            for (int i = 0; i < 3; ++i) {
+                const int32_t v = s0.faces[3 * f + i] - base;
+                if (memcmp(&s.xyz[3 * v], &s0.xyz[3 * v], 3 * sizeof(double)) == 0) continue;
+                if (surface_kept) fail_msg("%s step %d: boundary vertex %d moved with the surface kept", name, k, v);
+                res->boundary_moved = 1;
+            }
         /* fixed input vertices bit for bit; made vertices are not fixed */
         for (int32_t v = 0; v < s.nv; ++v) {
             const int fixed = v < s0.nv && s0.fixed[v];
@@ -818,7 +829,15 @@ static void test_keep_surface(void **state) {
     o.bad_angle = 25.0;
     checked_run(&b, &o, "flip|insert", &res);
     assert_true(res.faces_changed);
-    /* KEEP_SURFACE = 1 (checked_run compares the faces after each step) */
+    /* and smoothing moves the boundary vertices */
+    o.ops = BODT_OP_SMOOTH | BODT_OP_FLIP | BODT_OP_INSERT;
+    o.fix = FIX_NONE;
+    checked_run(&b, &o, "smooth|flip|insert", &res);
+    assert_true(res.boundary_moved);
+    /* KEEP_SURFACE = 1 (checked_run compares the faces and their vertices
+     * after each step) */
+    o.ops = BODT_OP_FLIP | BODT_OP_INSERT;
+    o.fix = FIX_ALL;
     o.keep_surface = 1;
     checked_run(&b, &o, "flip|insert, keep surface", &res);
     assert_true(res.flips + res.inserted > 0);
@@ -826,6 +845,33 @@ static void test_keep_surface(void **state) {
     o.fix = FIX_NONE;
     checked_run(&b, &o, "smooth|flip|insert, keep surface", &res);
     assert_true(res.flips + res.inserted > 0);
+    const int smoothing[3] = {BODT_MODE_BODT_BASIC, BODT_MODE_BODT, BODT_MODE_NODT};
+    const char *smoothing_names[3] = {"basic smooth, keep surface", "B-ODT smooth, keep surface",
+                                      "NODT smooth, keep surface"};
+    for (int k = 0; k < 3; ++k) {
+        o = opts(smoothing[k], BODT_OP_SMOOTH);
+        o.keep_surface = 1;
+        checked_run(&b, &o, smoothing_names[k], &res);
+    }
+    /* the phased mode recovers the surface: refused, the mesh as it was */
+    {
+        bodt_mesh *h = create_handle(&b, 0, 0);
+        const snap s0 = take(h, 0);
+        assert_int_equal(bodt_set_mode(h, BODT_MODE_PHASED_ODT), BODT_OK);
+        assert_int_equal(bodt_set_param_int(h, BODT_PARAM_KEEP_SURFACE, 1), BODT_OK);
+        bodt_step_report r;
+        memset(&r, 0, sizeof r);
+        r.size = sizeof r;
+        assert_int_equal(bodt_step(h, &r), BODT_ERR_INVALID_ARGUMENT);
+        assert_contains(bodt_mesh_last_error(h), "BODT_PARAM_KEEP_SURFACE");
+        const snap s1 = take(h, 0);
+        assert_int_equal(s1.nv, s0.nv);
+        assert_int_equal(s1.nt, s0.nt);
+        assert_memory_equal(s1.xyz, s0.xyz, 3 * (size_t)s0.nv * sizeof(double));
+        assert_memory_equal(s1.tets, s0.tets, 4 * (size_t)s0.nt * sizeof(int32_t));
+        assert_int_equal(bodt_set_param_int(h, BODT_PARAM_KEEP_SURFACE, 0), BODT_OK);
+        step_ok(h, &r);
+    }
     /* ODT keeps the surface without being told */
     for (int fix = FIX_NONE; fix <= FIX_ALL; fix += FIX_ALL) {
         o = opts(BODT_MODE_ODT, BODT_OP_FLIP | BODT_OP_INSERT);

@@ -382,6 +382,7 @@ public:
         if (!elements_read_) in_.fail("no $Elements section");
         if (d_.tets.empty()) in_.fail("no 4-node tetrahedra (element type 4) in the file");
         regions_from_entities();
+        markers_from_entities();
         return std::move(d_);
     }
 
@@ -542,6 +543,9 @@ private:
                 if (physical != 0) {
                     d_.triangles.insert(d_.triangles.end(), v_, v_ + 3);
                     d_.tri_markers.push_back(physical);
+                } else if (entity != 0) {
+                    entity_triangles_.insert(entity_triangles_.end(), v_, v_ + 3);
+                    triangle_entities_.push_back(entity);
                 }
                 break;
             case kLine:
@@ -576,6 +580,21 @@ private:
                                         [this](int32_t e) { return e != tet_entities_.front(); });
         if (other != tet_entities_.end()) d_.regions = std::move(tet_entities_);
         tet_entities_ = {};
+    }
+
+    // Without physical surfaces, Gmsh's surfaces are the face markers, as
+    // its volumes are the regions: a solver can still find the faces of
+    // each surface for its boundary conditions, and the surfaces between
+    // them stay where they are.  One surface alone marks nothing.
+    void markers_from_entities() {
+        const auto other = std::find_if(triangle_entities_.begin(), triangle_entities_.end(),
+                                        [this](int32_t e) { return e != triangle_entities_.front(); });
+        if (d_.triangles.empty() && other != triangle_entities_.end()) {
+            d_.triangles = std::move(entity_triangles_);
+            d_.tri_markers = std::move(triangle_entities_);
+        }
+        entity_triangles_ = {};
+        triangle_entities_ = {};
     }
 
     static bool used(int type) { return type == kTet || type == kTriangle || type == kLine || type == kPoint; }
@@ -692,6 +711,8 @@ private:
     std::map<int64_t, int32_t> physical_[4];  // entity tag -> first physical tag, per dimension
     std::unordered_set<uint64_t> lines_;      // the feature edges so far, (low, high) vertex
     std::vector<int32_t> tet_entities_;       // each tet's volume entity
+    std::vector<int32_t> entity_triangles_;   // the triangles without a physical tag (3 vertices each)
+    std::vector<int32_t> triangle_entities_;  // and their surface entities
     int32_t v_[64] = {};                      // vertices of the element being read
 };
 

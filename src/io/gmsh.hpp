@@ -18,8 +18,13 @@
 //                                        interfaces
 //               type 2 (3-node tri)   -> triangles + tri_markers, marker =
 //                                        the first physical tag of its
-//                                        surface; triangles without one are
-//                                        not marked faces and are dropped
+//                                        surface; in a file without any
+//                                        physical surface whose triangles
+//                                        lie on several surfaces, the
+//                                        surface's entity tag; else
+//                                        triangles without a physical tag
+//                                        are not marked faces and are
+//                                        dropped
 //               type 1 (2-node line)  -> feature_edges + edge_refs, ref =
 //                                        the first physical tag of its
 //                                        curve (0 when none); a line a 2.2

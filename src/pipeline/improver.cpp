@@ -161,7 +161,8 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
         MoveBasis basis;  // a boundary vertex's ascent directions
         StepReport report;
     };
-    const bool interior_only = mode_ == BODT_MODE_ODT;
+    // BODT_PARAM_KEEP_SURFACE: no vertex of a boundary or interface moves.
+    const bool interior_only = mode_ == BODT_MODE_ODT || params_.keep_surface != 0;
     const bool ascent = mode_ == BODT_MODE_BODT && params_.ascent_angle > 0.0 && steps_on_data_ > 0;
     // A vertex that stayed in the first step may move with the ascent (a
     // mode or parameter change clears the records itself).
@@ -232,6 +233,7 @@ void Improver::sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
     const auto states = coloured_sweep(
         mesh, threads,
         State{NodtSmoother(surfaces, cls, nodt_input_, guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
+            if (params_.keep_surface != 0 && cls.cls[v] != VertexClass::Interior) return;  // the surface kept
             smooth_vertex([&](Vec3& target) { return s.smoother.target(mesh, v, target, s.faces); },
                           [&](const Vec3& target, double& distance) {
                               return s.smoother.move(mesh, v, target, s.faces, distance);
@@ -479,6 +481,10 @@ void Improver::sweep_and_change(TetMesh& mesh, RegionSurfaces& surfaces, StepRep
 
 StepReport Improver::step(TetMesh& mesh, RegionSurfaces& surfaces) {
     StepReport report;
+    if (mode_ == BODT_MODE_PHASED_ODT && params_.keep_surface != 0)
+        throw Error(BODT_ERR_INVALID_ARGUMENT,
+                    "BODT_MODE_PHASED_ODT recovers the surface (its untangling, recovery and surface phases change "
+                    "it): BODT_PARAM_KEEP_SURFACE must be 0 in that mode");
     if (mode_ == BODT_MODE_PHASED_ODT) {
         step_phased_or_restore(mesh, surfaces, report);
     } else {
