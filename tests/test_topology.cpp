@@ -405,8 +405,23 @@ TetMesh check_valid(const EditableMesh& em, const Reference& ref, const char* wh
     CHECK(listed == 4 * alive, "%lld vertex->tet entries for %lld tets", static_cast<long long>(listed),
           static_cast<long long>(alive));
 
-    TetMesh m = written(em);
+    TetMesh m;
+    const std::vector<int32_t> renumber = em.write_to(m);
     CHECK(m.num_tets() == alive, "%d tets written, %lld alive", m.num_tets(), static_cast<long long>(alive));
+    // has_marker and marker (told by the count of marked faces at each
+    // vertex before the lookup) agree with the markers written.
+    for (int32_t t = 0; t < em.tet_capacity(); ++t) {
+        if (!em.alive(t)) continue;
+        const Tet& q = em.tet(t);
+        for (const auto& k : bodt::kFaceVertex) {
+            const FaceKey f = FaceKey::of(q[k[0]], q[k[1]], q[k[2]]);
+            const auto it = m.face_markers.find(FaceKey::of(renumber[f.v[0]], renumber[f.v[1]], renumber[f.v[2]]));
+            const bool marked = it != m.face_markers.end();
+            CHECK(em.has_marker(f) == marked && em.marker(f) == (marked ? it->second : 0),
+                  "face (%d %d %d): has_marker %d, marker %d; written: %d", f.v[0], f.v[1], f.v[2], em.has_marker(f),
+                  em.marker(f), marked ? it->second : -1);
+        }
+    }
     CHECK(m.regions.size() == m.tets.size() && m.tet_origin.size() == m.tets.size(), "per-tet arrays");
     const int32_t nin = m.num_input_vertices();
     CHECK(nin == static_cast<int32_t>(ref.points.size()), "%d input vertices, expected %zu", nin, ref.points.size());

@@ -10,8 +10,6 @@ namespace bodt {
 
 namespace {
 
-bool has_tet(const EditableMesh& mesh, const Tet& q) { return !mesh.tets_holding({q[0], q[1], q[2], q[3]}).empty(); }
-
 // The faces at a vertex, and which of them are on the surface (a
 // boundary, an interface or a marked face), read off its star alone: each
 // face at v lies in one or two of v's tets.  A collapse asks about the
@@ -79,7 +77,7 @@ bool link_condition(const EditableMesh& mesh, int32_t v, int32_t w, const FacesA
         for (size_t j = i + 1; j < common.size(); ++j) {
             const int32_t x = common[i], y = common[j];
             const FaceKey fv = FaceKey::of(v, x, y), fw = FaceKey::of(w, x, y);
-            if (at_v.has(fv) && at_w.has(fw) && !has_tet(mesh, {v, w, x, y})) return false;
+            if (at_v.has(fv) && at_w.has(fw) && !mesh.has_tet({v, w, x, y})) return false;
             // The triangle (x, y, outside) in both links: the two surface
             // faces would be glued into one inner face with no tet on either
             // side (a lone tet collapsed to nothing).  Where the surface
@@ -197,7 +195,7 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
         if (holds(q, w)) continue;
         std::replace(q.begin(), q.end(), v, w);
         const TetPoints p{mesh.point(q[0]), mesh.point(q[1]), mesh.point(q[2]), mesh.point(q[3])};
-        if (!acceptable_tet(p, limits) || has_tet(mesh, q)) return false;
+        if (!acceptable_tet(p, limits) || mesh.has_tet(q)) return false;
         moved.push_back({q, mesh.region(t), mesh.origin(t)});
     }
 

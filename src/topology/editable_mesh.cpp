@@ -70,6 +70,8 @@ EditableMesh::EditableMesh(const TetMesh& mesh, const VertexClasses& classes)
     fill_with_room(sine_, tets_.size(), kUnknownSine);
     fill_with_room(stamp_, points_.size(), uint64_t{0});
     fill_with_room(pins_, points_.size(), uint8_t{0});
+    fill_with_room(marked_at_, points_.size(), int32_t{0});
+    for (const auto& [f, m] : markers_) count_marked(f, 1);
     for (size_t v = 0; v < points_.size(); ++v) pins_[v] = mesh.vflags[v] & kPinned;
     for (const auto& [key, ref] : caller_features_) features_.insert(key);
     if (mesh.tet_origin.empty()) {
@@ -227,6 +229,17 @@ std::vector<int32_t> EditableMesh::tets_holding(std::initializer_list<int32_t> v
     return out;
 }
 
+bool EditableMesh::has_tet(const Tet& q) const {
+    int32_t fewest = q[0];
+    for (int32_t v : q)
+        if (vt_[v].size < vt_[fewest].size) fewest = v;
+    for (int32_t t : tets_of(fewest)) {
+        const Tet& r = tets_[t];
+        if (holds(r, q[0]) & holds(r, q[1]) & holds(r, q[2]) & holds(r, q[3])) return true;
+    }
+    return false;
+}
+
 int EditableMesh::face_tets(const FaceKey& f, int32_t out[2]) const {
     int n = 0;
     for (int32_t t : tets_of(f.v[0])) {
@@ -245,6 +258,7 @@ bool EditableMesh::is_surface_face(const FaceKey& f) const {
 }
 
 int32_t EditableMesh::marker(const FaceKey& f) const {
+    if (!may_be_marked(f)) return 0;
     const auto it = markers_.find(f);
     return it == markers_.end() ? 0 : it->second;
 }
@@ -361,6 +375,7 @@ std::array<int32_t, 4> EditableMesh::detach(int32_t t) {
 int32_t EditableMesh::add_vertex(const Vec3& p, VertexClass cls, Parents parents) {
     const int32_t v = num_vertices();
     points_.push_back(p);
+    marked_at_.push_back(0);
     cls_.push_back(cls);
     pins_.push_back(0);
     parents_.push_back(std::move(parents));
@@ -415,6 +430,7 @@ void EditableMesh::remove_tet(int32_t t) {
 void EditableMesh::set_marker(const FaceKey& f, int32_t m) {
     const auto it = markers_.find(f);
     journal_.push_back({Change::SetMarker, 0, f, it == markers_.end() ? kNoMarker : it->second, Vec3::Zero(), 0, {}});
+    if (it == markers_.end()) count_marked(f, 1);
     markers_[f] = m;
 }
 
@@ -423,6 +439,7 @@ void EditableMesh::erase_marker(const FaceKey& f) {
     if (it == markers_.end()) return;
     journal_.push_back({Change::EraseMarker, 0, f, it->second, Vec3::Zero(), 0, {}});
     markers_.erase(it);
+    count_marked(f, -1);
 }
 
 void EditableMesh::add_feature_edge(int32_t a, int32_t b, CallerRef caller) {
@@ -452,6 +469,7 @@ void EditableMesh::rollback(size_t mark) {
         switch (e.kind) {
             case Change::AddVertex:
                 points_.pop_back();
+                marked_at_.pop_back();
                 cls_.pop_back();
                 pins_.pop_back();
                 parents_.pop_back();
@@ -488,10 +506,17 @@ void EditableMesh::rollback(size_t mark) {
                 old_stamps_.pop_back();
                 break;
             case Change::SetMarker:
-                if (e.old_marker == kNoMarker) markers_.erase(e.face);
-                else markers_[e.face] = e.old_marker;
+                if (e.old_marker == kNoMarker) {
+                    markers_.erase(e.face);
+                    count_marked(e.face, -1);
+                } else {
+                    markers_[e.face] = e.old_marker;
+                }
                 break;
-            case Change::EraseMarker: markers_[e.face] = e.old_marker; break;
+            case Change::EraseMarker:
+                markers_[e.face] = e.old_marker;
+                count_marked(e.face, 1);
+                break;
             case Change::AddFeature:
                 features_.erase(e.edge);
                 caller_features_.erase(e.edge);

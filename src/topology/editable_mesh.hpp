@@ -108,13 +108,16 @@ public:
 
     // The tets holding every vertex of `vs` (an edge, a face, a tet).
     std::vector<int32_t> tets_holding(std::initializer_list<int32_t> vs) const;
+    // Some tet has the vertices of q (in any order): looked for among the
+    // tets of the one of them with the fewest.
+    bool has_tet(const Tet& q) const;
     // Tets holding the face; returns how many (0, 1 or 2).
     int face_tets(const FaceKey& f, int32_t out[2]) const;
     // On the boundary, between regions, or marked by the caller.
     bool is_surface_face(const FaceKey& f) const;
     // The face's marker; 0 when it has none.
     int32_t marker(const FaceKey& f) const;
-    bool has_marker(const FaceKey& f) const { return markers_.count(f) != 0; }
+    bool has_marker(const FaceKey& f) const { return may_be_marked(f) && markers_.count(f) != 0; }
     // The edge lies on a surface face.
     bool is_surface_edge(int32_t a, int32_t b) const;
     // False when the tets around the edge do not form one fan (a
@@ -218,6 +221,16 @@ private:
     std::vector<int32_t> vt_pool_;
     std::vector<TetSlot> vt_;
     std::unordered_map<FaceKey, int32_t, FaceKeyHash> markers_;
+    // Per vertex, how many marked faces hold it: a face with a vertex on
+    // none is not marked, and most faces the operations ask about (inner
+    // ones) are told so without a lookup in markers_.
+    std::vector<int32_t> marked_at_;
+    bool may_be_marked(const FaceKey& f) const {
+        return (marked_at_[f.v[0]] != 0) & (marked_at_[f.v[1]] != 0) & (marked_at_[f.v[2]] != 0);
+    }
+    void count_marked(const FaceKey& f, int32_t delta) {
+        for (int32_t v : f.v) marked_at_[v] += delta;
+    }
     EdgeRefs caller_features_;  // the caller's feature edges and refs, kept in the output
     EdgeSet features_;         // every feature edge the classes came from, plus the caller's
     std::vector<Entry> journal_;
