@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 
 namespace bodt {
@@ -63,9 +64,10 @@ private:
 // The link condition (Dey et al.), with the outside of the domain as one
 // more vertex: the vertices and edges that v and w both see are exactly
 // those around the edge (v, w), so the collapse glues nothing together.
-bool link_condition(const EditableMesh& mesh, int32_t v, int32_t w, const FacesAt& at_v, const FacesAt& at_w) {
-    std::vector<int32_t> nv, nw, common;
-    mesh.neighbors(v, nv);
+// `nv`: v's neighbours (EditableMesh::neighbors).
+bool link_condition(const EditableMesh& mesh, int32_t v, int32_t w, const FacesAt& at_v, const FacesAt& at_w,
+                    const std::vector<int32_t>& nv) {
+    std::vector<int32_t> nw, common;
     mesh.neighbors(w, nw);
     std::set_intersection(nv.begin(), nv.end(), nw.begin(), nw.end(), std::back_inserter(common));
     for (int32_t x : common) {
@@ -105,9 +107,9 @@ bool turns_little(const Vec3& before, const Vec3& after, const TopologyRules& ru
 // at most rules.surface_slope times their mean distance) so that it keeps
 // its shape.  On a curved feature line (rules.on_curved_shape) v may go to w
 // when w lies on the line's fitted shape.
-bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double length, const TopologyRules& rules) {
-    std::vector<int32_t> around;
-    mesh.neighbors(v, around);
+// `around`: v's neighbours.
+bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double length, const TopologyRules& rules,
+                         const std::vector<int32_t>& around) {
     std::vector<int32_t> along;
     for (int32_t x : around)
         if (mesh.is_feature_edge(v, x)) along.push_back(x);
@@ -121,9 +123,10 @@ bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double 
     return off.norm() <= std::max(1e-9 * length, tolerance) * d.norm() && (mesh.point(v) - mesh.point(u)).dot(d) > 0.0;
 }
 
-}  // namespace
-
-bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const TopologyRules& rules, double must_exceed) {
+// collapse_half_edge, with w's faces known (at_w) or not (null): the
+// midpoint collapse has them.
+bool collapse_half_edge_with(EditableMesh& mesh, int32_t v, int32_t w, const TopologyRules& rules, double must_exceed,
+                             const FacesAt* at_w) {
     const VertexClass cv = mesh.vertex_class(v);
     if (v == w || cv == VertexClass::Corner || cv == VertexClass::Fixed || cv == VertexClass::Unused) return false;
     std::vector<int32_t> star(mesh.tets_of(v));
@@ -132,8 +135,11 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
     const FacesAt at_v(mesh, v);
     if (v_on_surface && (!rules.surface_may_change || !at_v.surface_edge_to(w))) return false;
     const double length = (mesh.point(w) - mesh.point(v)).norm();
-    if (!feature_lines_allow(mesh, v, w, length, rules)) return false;
-    if (!link_condition(mesh, v, w, at_v, FacesAt(mesh, w))) return false;
+    std::vector<int32_t> around;
+    mesh.neighbors(v, around);
+    if (!feature_lines_allow(mesh, v, w, length, rules, around)) return false;
+    std::optional<FacesAt> own_at_w;
+    if (!link_condition(mesh, v, w, at_v, at_w ? *at_w : own_at_w.emplace(mesh, w), around)) return false;
     const double off_surface = v_on_surface ? rules.surface_slope * std::sqrt(length * at_v.mean_surface_edge(mesh, v)) : 0.0;
 
     // The surface faces at v: w must lie in each one's plane (or within
@@ -209,7 +215,6 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
         mesh.erase_marker(r.from);
         mesh.set_marker(r.to, r.marker);
     }
-    std::vector<int32_t> around;
     mesh.neighbors(w, around);  // v's former neighbours are now w's
     for (int32_t x : around) {
         if (!mesh.is_feature_edge(v, x)) continue;
@@ -218,6 +223,12 @@ bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const Topology
     }
     if (mesh.is_feature_edge(v, w)) mesh.erase_feature_edge(v, w);
     return true;
+}
+
+}  // namespace
+
+bool collapse_half_edge(EditableMesh& mesh, int32_t v, int32_t w, const TopologyRules& rules, double must_exceed) {
+    return collapse_half_edge_with(mesh, v, w, rules, must_exceed, nullptr);
 }
 
 int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRules& rules, double must_exceed) {
@@ -263,8 +274,13 @@ int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRu
                  (rules.on_curved_shape && rules.on_curved_shape(mesh, {f.v[0], f.v[1], f.v[2]}, mid));
         }
     }
-    if (ok && rank(b) > 0) ok = rules.surface_may_change && feature_lines_allow(mesh, b, a, length, rules);
-    if (ok && collapse_half_edge(mesh, a, b, rules, must_exceed)) return b;
+    if (ok && rank(b) > 0) {
+        std::vector<int32_t> around;
+        mesh.neighbors(b, around);
+        ok = rules.surface_may_change && feature_lines_allow(mesh, b, a, length, rules, around);
+    }
+    // b's faces are as they were: only its point moved.
+    if (ok && collapse_half_edge_with(mesh, a, b, rules, must_exceed, &at_b)) return b;
     mesh.rollback(mark);
     return -1;
 }
