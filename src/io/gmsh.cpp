@@ -572,13 +572,16 @@ private:
         d_.edge_refs.push_back(physical);
     }
 
+    // The elements lie in more than one entity.
+    static bool several(const std::vector<int32_t>& entities) {
+        return std::any_of(entities.begin(), entities.end(), [&](int32_t e) { return e != entities.front(); });
+    }
+
     // Without physical volumes, Gmsh's volumes are the regions (gmsh.hpp).
     void regions_from_entities() {
         const auto physical = [](int32_t r) { return r != 0; };
         if (std::any_of(d_.regions.begin(), d_.regions.end(), physical)) return;
-        const auto other = std::find_if(tet_entities_.begin(), tet_entities_.end(),
-                                        [this](int32_t e) { return e != tet_entities_.front(); });
-        if (other != tet_entities_.end()) d_.regions = std::move(tet_entities_);
+        if (several(tet_entities_)) d_.regions = std::move(tet_entities_);
         tet_entities_ = {};
     }
 
@@ -587,9 +590,7 @@ private:
     // each surface for its boundary conditions, and the surfaces between
     // them stay where they are.  One surface alone marks nothing.
     void markers_from_entities() {
-        const auto other = std::find_if(triangle_entities_.begin(), triangle_entities_.end(),
-                                        [this](int32_t e) { return e != triangle_entities_.front(); });
-        if (d_.triangles.empty() && other != triangle_entities_.end()) {
+        if (d_.triangles.empty() && several(triangle_entities_)) {
             d_.triangles = std::move(entity_triangles_);
             d_.tri_markers = std::move(triangle_entities_);
         }

@@ -118,6 +118,11 @@ VertexClasses Improver::classify(const TetMesh& mesh, const RegionSurfaces& surf
     return classify_vertices(mesh, surfaces, settings);
 }
 
+// ODT moves interior vertices only, and BODT_PARAM_KEEP_SURFACE keeps
+// every boundary and interface vertex where it is in the B-ODT and NODT
+// sweeps too.
+bool Improver::surface_stays() const { return mode_ == BODT_MODE_ODT || params_.keep_surface != 0; }
+
 GuardSettings Improver::guard_settings() const {
     return {params_.min_stretch, params_.backtrack_steps, params_.never_worse != 0};
 }
@@ -161,8 +166,7 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
         MoveBasis basis;  // a boundary vertex's ascent directions
         StepReport report;
     };
-    // BODT_PARAM_KEEP_SURFACE: no vertex of a boundary or interface moves.
-    const bool interior_only = mode_ == BODT_MODE_ODT || params_.keep_surface != 0;
+    const bool interior_only = surface_stays();
     const bool ascent = mode_ == BODT_MODE_BODT && params_.ascent_angle > 0.0 && steps_on_data_ > 0;
     // A vertex that stayed in the first step may move with the ascent (a
     // mode or parameter change clears the records itself).
@@ -233,7 +237,7 @@ void Improver::sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
     const auto states = coloured_sweep(
         mesh, threads,
         State{NodtSmoother(surfaces, cls, nodt_input_, guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
-            if (params_.keep_surface != 0 && cls.cls[v] != VertexClass::Interior) return;  // the surface kept
+            if (surface_stays() && cls.cls[v] != VertexClass::Interior) return;
             smooth_vertex([&](Vec3& target) { return s.smoother.target(mesh, v, target, s.faces); },
                           [&](const Vec3& target, double& distance) {
                               return s.smoother.move(mesh, v, target, s.faces, distance);

@@ -80,6 +80,8 @@ public:
 private:
     // The classes of the modes other than paper 002's, made anew.
     VertexClasses classify(const TetMesh& mesh, const RegionSurfaces& surfaces) const;
+    // The sweeps move no boundary or interface vertex.
+    bool surface_stays() const;
     GuardSettings guard_settings() const;
     // Smoothing sweeps: Gauss-Seidel in colour order (coloured_sweep.hpp),
     // on BODT_PARAM_THREADS threads; `shapes` (tet_shapes() of the mesh as

@@ -233,28 +233,25 @@ bool try_change(EditableMesh& mesh, int32_t t, const TopologySettings& settings,
     // after only falls as tets are added: the test fails at the first that
     // takes it to the bar (most changes fail), and the angle ranges are
     // only made for a change that passed that.
+    const auto changed = [&](size_t k) { return !mesh.alive(region[k]) || !(mesh.tet_points(region[k]) == shapes_before[k]); };
     double before = 1.0, after = 1.0;
-    std::vector<size_t> changed;  // the region's tets that changed
-    for (size_t k = 0; k < region.size(); ++k) {
-        const int32_t s = region[k];
-        if (mesh.alive(s) && mesh.tet_points(s) == shapes_before[k]) continue;
-        before = std::min(before, min_dihedral_sine(shapes_before[k]));
-        changed.push_back(k);
-    }
-    const double bar = before + kGain;
+    for (size_t k = 0; k < region.size(); ++k)
+        if (changed(k)) before = std::min(before, min_dihedral_sine(shapes_before[k]));
     CosineRange range_before{-1.0, 1.0}, range_after{-1.0, 1.0};
     bool passes = true;
     for (int32_t s : tets_touching(mesh, involved)) {
         const auto k = std::lower_bound(region.begin(), region.end(), s) - region.begin();
         const bool old = s < old_capacity && k < static_cast<long>(region.size()) && region[k] == s;
-        if (old && mesh.tet_points(s) == shapes_before[k]) continue;
+        if (old && !changed(static_cast<size_t>(k))) continue;
         const TetPoints p = mesh.tet_points(s);
         after = std::min(after, min_dihedral_sine(p));
-        if (!(passes = after > bar)) break;
+        passes = after > before + kGain;
+        if (!passes) break;
         if (rules.never_worse) widen(range_after, p);
     }
     if (passes && rules.never_worse) {
-        for (size_t k : changed) widen(range_before, shapes_before[k]);
+        for (size_t k = 0; k < region.size(); ++k)
+            if (changed(k)) widen(range_before, shapes_before[k]);
         passes = within(range_after, range_before);
     }
     if (!passes) {
