@@ -375,7 +375,11 @@ enum bodt_mode {
     BODT_MODE_BODT_BASIC = 3,
     /* B-ODT (the default): Algorithm 1 inside, Algorithm 2 on smooth surface
      * vertices, Algorithm 3 along feature lines, corners fixed; from the
-     * second step on, the angle ascent of BODT_PARAM_ASCENT_ANGLE too. */
+     * second step on, the angle ascent of BODT_PARAM_ASCENT_ANGLE too.
+     * Where the surface around a vertex is two or three flat pieces meeting
+     * at half BODT_PARAM_FEATURE_ANGLE or more (a CAD part's faces), the
+     * vertex moves only along their common line, or stays where three meet
+     * at a point, and a collapse keeps the pieces' planes. */
     BODT_MODE_BODT = 4,
     /* Paper 001: each interior vertex of a poor tet (stretch below
      * BODT_PARAM_POOR_QUALITY) minimises f = (1 - C) sum e(T) over interior
@@ -445,7 +449,9 @@ enum bodt_param {
      * says. */
     BODT_PARAM_NEVER_WORSE = 4,
     /* double, degrees, default 30: a surface edge whose two faces' normals
-     * differ by more than this is a feature edge (BODT_MODE_BODT). */
+     * differ by more than this is a feature edge (BODT_MODE_BODT); flat
+     * pieces of the surface meeting at half of it or more keep their planes
+     * there (see BODT_MODE_BODT). */
     BODT_PARAM_FEATURE_ANGLE = 5,
     /* double, default 0.2: tensor voting (paper 000 eq. 11) with eigenvalues
      * mu0 >= mu1 >= mu2 makes a vertex a feature-line vertex when

@@ -35,6 +35,10 @@
  *                 cylinder, ball, the other modes, two regions
  *   flat caps     the cylinder's flat caps stay flat under BODT (the rim's
  *                 feature-line vertices stay in the cap plane)
+ *   shallow ridge two flat pieces meeting at 20 degrees, below the feature
+ *                 angle: BODT moves the ridge's SURFACE vertices along it
+ *                 and keeps every roof vertex on the roof; with the feature
+ *                 angle at 50 degrees they leave it
  *   two regions   region volumes (BODT and BODT_BASIC) and the interface
  *                 plane (BODT) kept
  *   robustness    2000 steps mixing modes and NEVER_WORSE, BODT with its
@@ -787,6 +791,67 @@ static void test_cylinder_caps_stay_flat(void **state) {
         fail_msg("after 5 BODT steps a rim vertex is %.3g and a cap vertex %.3g off its flat cap", rim_off, cap_off);
 }
 
+/* A box whose top is a roof: two flat pieces rising 10 degrees to a ridge
+ * along x = 1, so they meet at 20 degrees, below the feature angle (30).
+ * The ridge vertices are SURFACE vertices; BODT moves them along the ridge
+ * only, and every roof vertex stays on the roof (FlatPieces: creases from
+ * half the feature angle are kept), as the volume is.  With the feature
+ * angle at 50 degrees (creases from 25) the ridge is smoothed over as a
+ * curved surface would be: a ridge vertex leaves the roof. */
+static double roof_height(double x, double slope) { return 2.0 + slope * fmin(x, 2.0 - x); }
+
+static void test_shallow_ridge(void **state) {
+    (void)state;
+    const double slope = tan(10.0 * acos(-1.0) / 180.0);
+    const shape s = make_sliding(4, 2.0, NULL, NULL, 0.25, 0.3, 47);
+    test_mesh *m = s.m;
+    unsigned char *ridge = cleanup_calloc((size_t)m->nverts);
+    for (int32_t v = 0; v < m->nverts; ++v) {
+        double *p = &m->xyz[3 * v];
+        const int roof = p[2] == 2.0;
+        /* The top vertices of the grid line x = 1 go back onto it, so no
+         * roof triangle crosses the ridge; then z is scaled up to the roof. */
+        if (roof && fabs(p[0] - 1.0) < 0.25) p[0] = 1.0, ridge[v] = p[1] > 0.0 && p[1] < 2.0;
+        p[2] *= roof_height(p[0], slope) / 2.0;
+    }
+    for (int variant = 0; variant < 2; ++variant) {
+        bodt_mesh *h = create_smoothing(m, BODT_MODE_BODT);
+        if (variant == 1) assert_int_equal(bodt_set_param_double(h, BODT_PARAM_FEATURE_ANGLE, 50.0), BODT_OK);
+        const double volume = total_volume(h, m->ntets);
+        const int32_t *cls = get_classes(h, m->nverts);
+        for (int k = 0; k < 10; ++k) {
+            bodt_step_report r;
+            step_ok(h, &r);
+        }
+        const double *xyz = get_xyz(h, m->nverts);
+        double off_roof = 0.0, off_ridge = 0.0, along_ridge = 0.0, roof_moved = 0.0;
+        int ridge_count = 0;
+        for (int32_t v = 0; v < m->nverts; ++v) {
+            const double *p = &xyz[3 * v], *p0 = &m->xyz[3 * v];
+            if (p0[2] != roof_height(p0[0], slope)) continue;
+            off_roof = fmax(off_roof, fabs(p[2] - roof_height(p[0], slope)));
+            roof_moved = fmax(roof_moved, fabs(p[0] - p0[0]) + fabs(p[1] - p0[1]));
+            if (!ridge[v]) continue;
+            ++ridge_count;
+            assert_int_equal(cls[v], BODT_VERTEX_SURFACE);
+            off_ridge = fmax(off_ridge, fabs(p[0] - 1.0));
+            along_ridge = fmax(along_ridge, fabs(p[1] - p0[1]));
+        }
+        print_message("roof, feature angle %d: %d ridge vertices; off the roof by up to %.3g, off the ridge by %.3g, "
+                      "along it %.3g; roof vertices moved up to %.3g\n",
+                      variant ? 50 : 30, ridge_count, off_roof, off_ridge, along_ridge, roof_moved);
+        assert_int_equal(ridge_count, 3);
+        assert_near(total_volume(h, m->ntets), volume, 1e-12 * volume);
+        if (variant == 0) {
+            if (!(off_roof <= 1e-12 && off_ridge <= 1e-12))
+                fail_msg("a roof vertex left the roof by %g, a ridge vertex the ridge by %g", off_roof, off_ridge);
+            assert_true(along_ridge > 1e-6 && roof_moved > 1e-6);
+        } else {
+            assert_true(off_roof > 1e-6);
+        }
+    }
+}
+
 /* The unit ball (a 6^3 Kuhn box mapped onto it): with the default feature
  * angle and ratios no feature is found, every boundary vertex is SURFACE. */
 static void test_classes_ball(void **state) {
@@ -1183,6 +1248,7 @@ int main(void) {
         cmocka_unit_test_teardown(test_classes_box, cleanup_teardown),
         cmocka_unit_test_teardown(test_classes_cylinder, cleanup_teardown),
         cmocka_unit_test_teardown(test_cylinder_caps_stay_flat, cleanup_teardown),
+        cmocka_unit_test_teardown(test_shallow_ridge, cleanup_teardown),
         cmocka_unit_test_teardown(test_classes_ball, cleanup_teardown),
         cmocka_unit_test_teardown(test_two_regions, cleanup_teardown),
         cmocka_unit_test_teardown(test_robustness, cleanup_teardown),

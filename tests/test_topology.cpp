@@ -75,6 +75,10 @@
 //                        done valid, the volume moved within the bound
 //   collapse_curved_pass a short edge on the dome: collapsed under slope
 //                        0.1 (the worst sine up), not under 0
+//   collapse_crease      a short edge off a 20-degree ridge between two flat
+//                        pieces: collapsed into the roof vertex under slope
+//                        0.1 alone, refused with crease_cosine at 15 degrees;
+//                        the other way (keeping both planes) done in both
 //   flip_pass_plain      improve_topology (flips only, with and without sine
 //                        bounds from the tets' shapes) gives the same mesh
 //                        and count as the plain pass written out here: every
@@ -2855,6 +2859,53 @@ void test_collapse_curved_pass(void**) {
     assert_true(after[1] > after[0] + 0.05);
 }
 
+// A box whose top is a roof: two flat pieces rising 10 degrees to a ridge
+// along x = 1/2 (20 degrees apart, below the feature angle), and a roof
+// vertex u pulled along its own piece to 5 % of the way to a ridge vertex v.
+// Collapsing v into u takes the other piece off its plane by little
+// (within surface_slope 0.1): done without crease_cosine, refused with
+// it at 15 degrees (FlatPieces: the ridge is a crease, the pieces keep
+// their planes).  u into v, which keeps both planes, is done either way.
+void test_collapse_crease(void**) {
+    const double slope = std::tan(10.0 * M_PI / 180.0);
+    test_mesh tm{};
+    assert_int_equal(tm_make_cubes(&tm, 6, 1.0, nullptr, nullptr, 0.0, 1), 0);
+    Input in = from_test_mesh(tm, nullptr);
+    tm_free(&tm);
+    int32_t v = -1, u = -1;
+    for (int32_t k = 0; k < static_cast<int32_t>(in.points.size()); ++k) {
+        Vec3& p = in.points[k];
+        if (p.z() == 1.0 && p.x() == 0.5 && std::fabs(p.y() - 0.5) < 1e-12) v = k;
+        p.z() *= 1.0 + slope * std::min(p.x(), 1.0 - p.x());
+    }
+    assert_true(v >= 0);
+    for (const Tet& q : in.tets)
+        for (int32_t k : q)
+            if (std::count(q.begin(), q.end(), v) && in.points[k].z() > 1.0 && in.points[k].x() < 0.4) u = k;
+    assert_true(u >= 0);
+    in.points[u] = in.points[v] + 0.05 * (in.points[u] - in.points[v]);
+    const Case c = make_case(in);
+    assert_int_equal(static_cast<int>(c.classes.cls[v]), static_cast<int>(bodt::VertexClass::Surface));
+    const Reference ref = reference_of(c);
+    for (const double crease : {-1.0, std::cos(15.0 * M_PI / 180.0)}) {
+        TopologyRules rules = loose_rules();
+        rules.surface_slope = 0.1;
+        rules.crease_cosine = crease;
+        char what[96];
+        std::snprintf(what, sizeof what, "ridge collapse, crease cosine %g", crease);
+        EditableMesh em(c.mesh, c.classes);
+        if (crease < 0.0) {
+            CHECK(bodt::collapse_half_edge(em, v, u, rules, 0.0), "%s: ridge vertex into roof vertex refused", what);
+            check_valid(em, ref, what, false);
+        } else {
+            expect_refused(em, what, [&] { return bodt::collapse_half_edge(em, v, u, rules, 0.0); });
+        }
+        EditableMesh back(c.mesh, c.classes);
+        CHECK(bodt::collapse_half_edge(back, u, v, rules, 0.0), "%s: roof vertex into ridge vertex refused", what);
+        check_valid(back, ref, what, false);
+    }
+}
+
 }  // namespace
 
 int main(void) {
@@ -2881,6 +2932,7 @@ int main(void) {
         cmocka_unit_test(test_collapse_pass),
         cmocka_unit_test(test_collapse_curved),
         cmocka_unit_test(test_collapse_curved_pass),
+        cmocka_unit_test(test_collapse_crease),
         cmocka_unit_test(test_flip_pass_plain),
         cmocka_unit_test(test_sine_bounds),
         cmocka_unit_test(test_failed_flips),

@@ -118,6 +118,15 @@ VertexClasses Improver::classify(const TetMesh& mesh, const RegionSurfaces& surf
     return classify_vertices(mesh, surfaces, settings);
 }
 
+// Flat pieces of the surface meeting at half the feature angle or more are
+// kept as they are (FlatPieces) in the mode that detects features and may
+// move the surface; a cylinder cut into strips (9 to 11 degrees apart in
+// `joint` and `rotor`) or a smooth part cut into quads (below 1 degree in
+// `fandisk`) is still smoothed as the curved surface it stands for.
+double Improver::crease_cosine() const {
+    return mode_ == BODT_MODE_BODT ? std::cos(0.5 * params_.feature_angle * M_PI / 180.0) : -1.0;
+}
+
 // ODT moves interior vertices only, and BODT_PARAM_KEEP_SURFACE keeps
 // every boundary and interface vertex where it is in the B-ODT and NODT
 // sweeps too.
@@ -181,7 +190,7 @@ void Improver::sweep_bodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
         ascent ? std::max(quality_extremes(shapes, threads).cosines.of_max, ascent_move.largest_cosine()) : 1.0;
     settled_.begin_sweep(mesh.points.size(), mesh.colouring().colours());
     const auto states = coloured_sweep(
-        mesh, threads, State{BodtSmoother(surfaces, cls, params_.tolerance), MoveGuard(guard_settings(), &shapes), {}, {}, {}},
+        mesh, threads, State{BodtSmoother(surfaces, cls, params_.tolerance, crease_cosine()), MoveGuard(guard_settings(), &shapes), {}, {}, {}},
         [&](State& s, int32_t v, int32_t colour) {
             if ((interior_only && cls.cls[v] != VertexClass::Interior) || settled_.settled(mesh, v)) return;
             StarTable& star = s.guard.star();
@@ -333,7 +342,10 @@ bool Improver::change_topology(TetMesh& mesh, RegionSurfaces& surfaces, StepRepo
     // Where the surface may change, a short surface edge on a curved part
     // may go, and a tet lying flat on the surface may be taken out: both
     // leave flat tets that no smoothing or insertion breaks.
-    if (settings.rules.surface_may_change) settings.rules.surface_slope = kSurfaceSlope;
+    if (settings.rules.surface_may_change) {
+        settings.rules.surface_slope = kSurfaceSlope;
+        settings.rules.crease_cosine = crease_cosine();
+    }
     const bool paper_001 = mode_ == BODT_MODE_OPT_WEIGHTED;
     settings.rules.min_stretch = params_.min_stretch;
     settings.rules.never_worse = params_.never_worse != 0;

@@ -82,6 +82,8 @@ private:
     VertexClasses classify(const TetMesh& mesh, const RegionSurfaces& surfaces) const;
     // The sweeps move no boundary or interface vertex.
     bool surface_stays() const;
+    // The creases FlatPieces keeps: cosine at most this (-1: none).
+    double crease_cosine() const;
     GuardSettings guard_settings() const;
     // Smoothing sweeps: Gauss-Seidel in colour order (coloured_sweep.hpp),
     // on BODT_PARAM_THREADS threads; `shapes` (tet_shapes() of the mesh as

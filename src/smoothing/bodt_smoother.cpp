@@ -1,5 +1,7 @@
 #include "smoothing/bodt_smoother.hpp"
 
+#include "features/flat_pieces.hpp"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -33,33 +35,11 @@ Vec3 BodtSmoother::line_direction(const TetMesh& mesh, int32_t v, const std::arr
 
 namespace {
 
-// Relative to a length, how far a point may be off a plane or a line and
-// still count as on it: far above round-off, far below anything a
-// finite-element solution could tell.
-constexpr double kFlat = 1e-6;
-
-// How many planes through x0 the ring triangles (x0, y_i, y_i+1) lie in,
-// counted up to 3.
-int ring_planes(const TetMesh& mesh, const Vec3& x0, const std::vector<int32_t>& ring) {
-    Vec3 planes[2];
-    int count = 0;
-    const size_t m = ring.size();
-    for (size_t i = 0; i < m; ++i) {
-        const Vec3 a = mesh.points[ring[i]] - x0, b = mesh.points[ring[(i + 1) % m]] - x0;
-        const Vec3 n = a.cross(b);
-        if (!(n.norm() > 0.0)) return 3;
-        const double scale = std::max(a.norm(), b.norm());
-        // On plane k when both points are: their heights over it are small.
-        const auto on = [&](const Vec3& u) {
-            return std::abs(a.dot(u)) <= kFlat * scale && std::abs(b.dot(u)) <= kFlat * scale;
-        };
-        bool known = false;
-        for (int k = 0; k < count && !known; ++k) known = on(planes[k]);
-        if (known) continue;
-        if (count == 2) return 3;
-        planes[count++] = n.normalized();
-    }
-    return count;
+// The flat pieces of the ring triangles (x0, y_i, y_i+1).
+FlatPieces ring_pieces(const TetMesh& mesh, const Vec3& x0, const std::vector<int32_t>& ring) {
+    FlatPieces pieces(x0);
+    for (size_t i = 0; i < ring.size(); ++i) pieces.add(mesh.points[ring[i]], mesh.points[ring[(i + 1) % ring.size()]]);
+    return pieces;
 }
 
 }  // namespace
@@ -70,18 +50,25 @@ bool BodtSmoother::ascent_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis
     if (c != VertexClass::Surface && !line) return false;
     const Vec3& x0 = mesh.points[v];
     normals_.clear();
+    ring_normals_.clear();
     for (const int32_t* k = surfaces_.begin(v); k != surfaces_.end(v); ++k) {
         std::vector<int32_t>& ring = k == surfaces_.begin(v) ? first_ring_ : ring_;  // as in target()
         surfaces_.surface(*k).one_ring(v, ring);
-        if (ring_planes(mesh, x0, ring) > (line ? 2 : 1)) return false;
+        const FlatPieces pieces = ring_pieces(mesh, x0, ring);
         Vec3 n = Vec3::Zero();  // the ring normal, as add_ring_triangle sums it
         for (size_t i = 0; i < ring.size(); ++i)
             n += 0.5 * (mesh.points[ring[i]] - x0).cross(mesh.points[ring[(i + 1) % ring.size()]] - x0);
+        if (!line && pieces.faceted(crease_cosine_)) {  // along a crease, as target() moves v
+            normals_.insert(normals_.end(), pieces.normals(), pieces.normals() + pieces.count());
+            ring_normals_.push_back(n);
+            continue;
+        }
+        if (pieces.count() > (line ? 2 : 1)) return false;
         normals_.push_back(n);
     }
     if (line) {
         const Vec3 a = mesh.points[classes_.line[v][0]] - x0, b = mesh.points[classes_.line[v][1]] - x0;
-        if (a.cross(b).norm() > kFlat * a.norm() * b.norm()) return false;
+        if (a.cross(b).norm() > FlatPieces::kFlat * a.norm() * b.norm()) return false;
     }
     return move_basis(mesh, v, basis);
 }
@@ -125,6 +112,10 @@ bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) 
             whole = d.norm();
             d -= d.dot(n) * n;  // keep the volume: stay in the tangent plane (a no-op for n_a x n_b)
         }
+        // Faceted pieces are flat only to FlatPieces::kFlat (an STL's float
+        // coordinates): d is also made orthogonal to each such ring's own
+        // normal, so that the volume is kept to round-off.
+        for (const Vec3& n : ring_normals_) d -= d.dot(n) / n.squaredNorm() * n;
         const double len = d.norm();
         if (!(len > 1e-12 * whole)) return false;
         basis.resize(3, 1);
@@ -156,6 +147,7 @@ Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star,
     }
 
     normals_.clear();
+    ring_normals_.clear();
     for (const int32_t* k = surfaces_.begin(v); k != surfaces_.end(v); ++k) {
         // The first surface's ring is kept for line_direction.
         std::vector<int32_t>& ring = k == surfaces_.begin(v) ? first_ring_ : ring_;
@@ -167,7 +159,18 @@ Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star,
             n += add_ring_triangle(model, x0, mesh.points[a], mesh.points[b]);
             surface_faces.push_back(FaceKey::of(v, a, b));
         }
-        normals_.push_back(n);
+        // Where the surface around v is faceted, any move off the pieces'
+        // common line (or a move at all, where three meet at a point) takes
+        // v off them and the surface off its shape, also at creases below
+        // the feature angle (the roofs and bevels of `house2` moved by 1.2 %
+        // of its size): one normal per piece.
+        const FlatPieces pieces = ring_pieces(mesh, x0, ring);
+        if (pieces.faceted(crease_cosine_)) {
+            normals_.insert(normals_.end(), pieces.normals(), pieces.normals() + pieces.count());
+            ring_normals_.push_back(n);
+        } else {
+            normals_.push_back(n);
+        }
     }
     std::sort(surface_faces.begin(), surface_faces.end());
     surface_faces.erase(std::unique(surface_faces.begin(), surface_faces.end()), surface_faces.end());

@@ -18,8 +18,12 @@ class BodtSmoother {
 public:
     // `tolerance`: a vertex whose move would be at most this fraction of
     // its star's size (the cube root of its volume) has converged and stays.
-    BodtSmoother(const RegionSurfaces& surfaces, const VertexClasses& classes, double tolerance)
-        : surfaces_(surfaces), classes_(classes), tolerance_(tolerance) {}
+    // A surface or feature-line vertex where the surface is faceted
+    // (FlatPieces, with creases of a cosine at most `crease_cosine`) moves
+    // only along the pieces' common line, or not at all; -1: none is
+    // (paper 000's Algorithm 2 alone, BODT_MODE_BODT_BASIC).
+    BodtSmoother(const RegionSurfaces& surfaces, const VertexClasses& classes, double tolerance, double crease_cosine)
+        : surfaces_(surfaces), classes_(classes), tolerance_(tolerance), crease_cosine_(crease_cosine) {}
 
     // The target of vertex v, whose star is in `star`: Stay when v's move
     // is shorter than the tolerance.  `surface_faces` receives the surface
@@ -30,8 +34,9 @@ public:
 
     // The directions surface or feature-line vertex v may take the angle
     // ascent along (those of move_basis), when a move along them keeps the
-    // boundary's shape: v's rings flat, or two planes meeting along a
-    // straight feature line.  False elsewhere (curved parts, corners).
+    // boundary's shape: v's rings flat, two planes meeting along a straight
+    // feature line, or a crease (FlatPieces).  False elsewhere (curved
+    // parts, corners).
     // Walks v's rings again: meant for the few vertices of bad tets.
     bool ascent_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis);
 
@@ -55,9 +60,11 @@ private:
     const RegionSurfaces& surfaces_;
     const VertexClasses& classes_;
     double tolerance_;
+    double crease_cosine_;
     std::vector<int32_t> first_ring_;  // the one-ring of v on its first surface
     std::vector<int32_t> ring_;        // scratch for the others
-    std::vector<Vec3> normals_;  // one ring normal sum_i S_i n_i per surface at v (eq. B.1)
+    std::vector<Vec3> normals_;  // one ring normal sum_i S_i n_i per surface at v (eq. B.1), or its pieces'
+    std::vector<Vec3> ring_normals_;  // the ring normals of the faceted rings (a move keeps them too)
     std::vector<FaceKey> faces_;
     std::vector<double> terms_;  // add_star()'s scratch
 };

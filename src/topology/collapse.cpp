@@ -1,4 +1,5 @@
 // Half-edge and edge collapse (paper 002 sec. 3.5.1).
+#include "features/flat_pieces.hpp"
 #include "topology/op_support.hpp"
 #include "topology/operations.hpp"
 
@@ -55,6 +56,18 @@ public:
         for (int32_t x : ends) sum += (mesh.point(x) - mesh.point(v)).norm();
         return ends.empty() ? 0.0 : sum / static_cast<double>(ends.size());
     }
+    // The slope a collapse of v may take its surface by (TopologyRules::
+    // surface_slope): none where v's surface faces are faceted
+    // (TopologyRules::crease_cosine), where any would take the surface off
+    // its shape.
+    double slope(const EditableMesh& mesh, int32_t v, const TopologyRules& rules) const {
+        FlatPieces pieces(mesh.point(v));
+        for (const FaceKey& f : surface_) {
+            const int k = f.v[0] == v ? 0 : (f.v[1] == v ? 1 : 2);
+            pieces.add(mesh.point(f.v[(k + 1) % 3]), mesh.point(f.v[(k + 2) % 3]));
+        }
+        return pieces.faceted(rules.crease_cosine) ? 0.0 : rules.surface_slope;
+    }
 
 private:
     static bool holds3(const FaceKey& f, int32_t x) { return f.v[0] == x || f.v[1] == x || f.v[2] == x; }
@@ -104,12 +117,12 @@ bool turns_little(const Vec3& before, const Vec3& after, const TopologyRules& ru
 
 // Where v may go along its feature edges: to w, over a feature edge, with
 // the line straight at v (or v off the chord of its two line neighbours by
-// at most rules.surface_slope times their mean distance) so that it keeps
-// its shape.  On a curved feature line (rules.on_curved_shape) v may go to w
-// when w lies on the line's fitted shape.
+// at most `slope` times their mean distance) so that it keeps its shape.
+// On a curved feature line (rules.on_curved_shape) v may go to w when w
+// lies on the line's fitted shape.
 // `around`: v's neighbours.
 bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double length, const TopologyRules& rules,
-                         const std::vector<int32_t>& around) {
+                         double slope, const std::vector<int32_t>& around) {
     std::vector<int32_t> along;
     for (int32_t x : around)
         if (mesh.is_feature_edge(v, x)) along.push_back(x);
@@ -119,7 +132,7 @@ bool feature_lines_allow(const EditableMesh& mesh, int32_t v, int32_t w, double 
     const int32_t u = along[0] == w ? along[1] : along[0];
     const Vec3 d = mesh.point(w) - mesh.point(u);
     const Vec3 off = (mesh.point(v) - mesh.point(u)).cross(d);
-    const double tolerance = rules.surface_slope * std::sqrt(length * 0.5 * ((mesh.point(v) - mesh.point(u)).norm() + length));
+    const double tolerance = slope * std::sqrt(length * 0.5 * ((mesh.point(v) - mesh.point(u)).norm() + length));
     return off.norm() <= std::max(1e-9 * length, tolerance) * d.norm() && (mesh.point(v) - mesh.point(u)).dot(d) > 0.0;
 }
 
@@ -137,10 +150,11 @@ bool collapse_half_edge_with(EditableMesh& mesh, int32_t v, int32_t w, const Top
     const double length = (mesh.point(w) - mesh.point(v)).norm();
     std::vector<int32_t> around;
     mesh.neighbors(v, around);
-    if (!feature_lines_allow(mesh, v, w, length, rules, around)) return false;
+    const double slope = v_on_surface ? at_v.slope(mesh, v, rules) : 0.0;
+    if (!feature_lines_allow(mesh, v, w, length, rules, slope, around)) return false;
     std::optional<FacesAt> own_at_w;
     if (!link_condition(mesh, v, w, at_v, at_w ? *at_w : own_at_w.emplace(mesh, w), around)) return false;
-    const double off_surface = v_on_surface ? rules.surface_slope * std::sqrt(length * at_v.mean_surface_edge(mesh, v)) : 0.0;
+    const double off_surface = slope * std::sqrt(length * at_v.mean_surface_edge(mesh, v));
 
     // The surface faces at v: w must lie in each one's plane (or within
     // off_surface of it), the renamed face must keep its side (and turn
@@ -256,7 +270,8 @@ int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRu
     const std::vector<int32_t> star(mesh.tets_of(b));
     const TetLimits limits = limits_for(mesh, star, rules, must_exceed);
     const FacesAt at_b(mesh, b);
-    const double off_surface = rules.surface_slope * std::sqrt(length * at_b.mean_surface_edge(mesh, b));
+    const double slope = rank(b) > 0 ? at_b.slope(mesh, b, rules) : 0.0;
+    const double off_surface = slope * std::sqrt(length * at_b.mean_surface_edge(mesh, b));
     mesh.move_vertex(b, mid);
     bool ok = true;
     for (int32_t t : star) {
@@ -277,7 +292,7 @@ int32_t collapse_edge(EditableMesh& mesh, int32_t a, int32_t b, const TopologyRu
     if (ok && rank(b) > 0) {
         std::vector<int32_t> around;
         mesh.neighbors(b, around);
-        ok = rules.surface_may_change && feature_lines_allow(mesh, b, a, length, rules, around);
+        ok = rules.surface_may_change && feature_lines_allow(mesh, b, a, length, rules, slope, around);
     }
     // b's faces are as they were: only its point moved.
     if (ok && collapse_half_edge_with(mesh, a, b, rules, must_exceed, &at_b)) return b;

@@ -53,6 +53,10 @@ struct TopologyRules {
     // on the surface by two faces: each face it uncovers is turned by at
     // most asin of it from the face it replaces.
     double surface_slope = 0.0;
+    // Where the surface faces at the vertex that goes (or moves) are
+    // faceted (FlatPieces, with creases of a cosine at most this), the
+    // collapse takes no slope: the pieces keep their planes.  -1: never.
+    double crease_cosine = -1.0;
 };
 
 // The largest number of tets around an edge that edge removal considers.
