@@ -3,8 +3,11 @@
 the library was not tuned on: Gmsh (Debian python3-gmsh) meshes each
 OpenCASCADE shape without its own optimiser and writes DIR/NAME.mesh, and a
 finer surface of four of them as DIR/NAME.stl, for TetGen -pQ / -pqQ.
+With --creases, five shapes whose flat faces meet at shallow creases
+instead (prisms of 16, 20 and 40 sides, gable roofs of 10 and 20 degrees'
+pitch), each with its surface.
 
-    /usr/bin/python3 bench/cad_shapes.py DIR
+    /usr/bin/python3 bench/cad_shapes.py [--creases] DIR
     bench/build/bodt_bench --no-shared --modes bodt,bodt-smooth --no-peers \\
         $(for f in DIR/*.mesh; do echo --mesh $f; done) \\
         $(for f in DIR/*.stl; do echo --surface $f; done)
@@ -56,6 +59,25 @@ def notched_disc():  # a disc with six square notches in its rim
         c = occ.cut([(3, c)], [(3, b)])[0][0][1]
 
 
+def prism(sides):  # a regular prism of unit radius and height
+    def build():
+        corners = [occ.addPoint(math.cos(2 * math.pi * k / sides), math.sin(2 * math.pi * k / sides), 0)
+                   for k in range(sides)]
+        lines = [occ.addLine(corners[k], corners[(k + 1) % sides]) for k in range(sides)]
+        occ.extrude([(2, occ.addPlaneSurface([occ.addCurveLoop(lines)]))], 0, 0, 1)
+    return build
+
+
+def gable(pitch_deg):  # a 2 x 1.5 x 1 house whose roof rises at pitch_deg to a ridge
+    def build():
+        rise = math.tan(math.radians(pitch_deg))
+        outline = [(0, 0, 0), (2, 0, 0), (2, 0, 1), (1, 0, 1 + rise), (0, 0, 1)]
+        corners = [occ.addPoint(*p) for p in outline]
+        lines = [occ.addLine(corners[k], corners[(k + 1) % 5]) for k in range(5)]
+        occ.extrude([(2, occ.addPlaneSurface([occ.addCurveLoop(lines)]))], 0, 1.5, 0)
+    return build
+
+
 # name, shape, element size of the tet mesh, of the surface (None: no surface)
 SHAPES = [
     ("cylhole", cylinder_with_hole, 0.25, 0.15),
@@ -65,6 +87,13 @@ SHAPES = [
     ("boxsph", box_with_ball_hole, 0.15, 0.1),
     ("wedge", wedge, 0.25, None),
     ("gear", notched_disc, 0.15, 0.1),
+]
+CREASE_SHAPES = [
+    ("prism16", prism(16), 0.15, 0.15),
+    ("prism20", prism(20), 0.15, 0.15),
+    ("prism40", prism(40), 0.15, 0.15),
+    ("roof10", gable(10), 0.12, 0.12),
+    ("roof20", gable(20), 0.12, 0.12),
 ]
 
 
@@ -84,11 +113,13 @@ def write(path, build, size, dim):
 
 
 def main():
-    if len(sys.argv) != 2:
+    args = sys.argv[1:]
+    creases = args[:1] == ["--creases"]
+    if len(args) != 1 + creases:
         sys.exit(__doc__)
-    out = sys.argv[1]
+    out = args[-1]
     os.makedirs(out, exist_ok=True)
-    for name, build, size, surface in SHAPES:
+    for name, build, size, surface in CREASE_SHAPES if creases else SHAPES:
         write(os.path.join(out, name + ".mesh"), build, size, 3)
         if surface:
             write(os.path.join(out, name + ".stl"), build, surface, 2)
