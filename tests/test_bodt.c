@@ -811,7 +811,10 @@ static void test_shallow_ridge(void **state) {
         const int roof = p[2] == 2.0;
         /* The top vertices of the grid line x = 1 go back onto it, so no
          * roof triangle crosses the ridge; then z is scaled up to the roof. */
-        if (roof && fabs(p[0] - 1.0) < 0.25) p[0] = 1.0, ridge[v] = p[1] > 0.0 && p[1] < 2.0;
+        if (roof && fabs(p[0] - 1.0) < 0.25) {
+            p[0] = 1.0;
+            ridge[v] = p[1] > 0.0 && p[1] < 2.0;
+        }
         p[2] *= roof_height(p[0], slope) / 2.0;
     }
     for (int variant = 0; variant < 2; ++variant) {

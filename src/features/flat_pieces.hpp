@@ -24,11 +24,13 @@ public:
     explicit FlatPieces(const Vec3& x0) : x0_(x0) {}
 
     // Adds the surface triangle (x0, a, b).
-    void add(const Vec3& a, const Vec3& b) {
+    void add(const Vec3& a, const Vec3& b) { add(a, b, (a - x0_).cross(b - x0_)); }
+    // The same with its normal n, (a - x0) x (b - x0) times any positive
+    // number, known (the ring's sums have it).
+    void add(const Vec3& a, const Vec3& b, const Vec3& n) {
         ++triangles_;
         if (count_ > kMost) return;
         const Vec3 u = a - x0_, w = b - x0_;
-        const Vec3 n = u.cross(w);
         if (!(n.norm() > 0.0)) {
             count_ = kMost + 1;
             return;

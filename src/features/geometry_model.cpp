@@ -10,8 +10,6 @@ namespace bodt {
 
 namespace {
 
-constexpr double kDegree = M_PI / 180.0;
-
 struct Face {
     std::array<int32_t, 3> v;
     Vec3 normal;  // not unit

@@ -10,8 +10,6 @@ namespace bodt {
 
 namespace {
 
-constexpr double kDegree = M_PI / 180.0;
-
 Vec3 face_normal(const TetMesh& mesh, const BoundarySurface& s, SurfaceMesh::FaceHandle f) {
     Vec3 p[3];
     int k = 0;

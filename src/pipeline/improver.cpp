@@ -124,7 +124,7 @@ VertexClasses Improver::classify(const TetMesh& mesh, const RegionSurfaces& surf
 // `joint` and `rotor`) or a smooth part cut into quads (below 1 degree in
 // `fandisk`) is still smoothed as the curved surface it stands for.
 double Improver::crease_cosine() const {
-    return mode_ == BODT_MODE_BODT ? std::cos(0.5 * params_.feature_angle * M_PI / 180.0) : -1.0;
+    return mode_ == BODT_MODE_BODT ? std::cos(0.5 * params_.feature_angle * kDegree) : -1.0;
 }
 
 // ODT moves interior vertices only, and BODT_PARAM_KEEP_SURFACE keeps
@@ -237,6 +237,7 @@ void Improver::sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
                           StepReport& report) {
     const VertexClasses& cls = classes(mesh, surfaces);
     nodt_input_.update(mesh, cls);
+    const bool interior_only = surface_stays();
     struct State {
         NodtSmoother smoother;
         std::vector<FaceKey> faces;
@@ -246,7 +247,7 @@ void Improver::sweep_nodt(TetMesh& mesh, const RegionSurfaces& surfaces, ShapeCa
     const auto states = coloured_sweep(
         mesh, threads,
         State{NodtSmoother(surfaces, cls, nodt_input_, guard_settings(), &shapes), {}, {}}, [&](State& s, int32_t v) {
-            if (surface_stays() && cls.cls[v] != VertexClass::Interior) return;
+            if (interior_only && cls.cls[v] != VertexClass::Interior) return;
             smooth_vertex([&](Vec3& target) { return s.smoother.target(mesh, v, target, s.faces); },
                           [&](const Vec3& target, double& distance) {
                               return s.smoother.move(mesh, v, target, s.faces, distance);

@@ -15,6 +15,9 @@ namespace bodt {
 
 using Vec3 = Eigen::Vector3d;
 
+// One degree in radians.
+inline constexpr double kDegree = M_PI / 180.0;
+
 // The per-tet kernels are inlined into the loops over tets, whose
 // vectorisation depends on it.
 #if defined(__GNUC__)

@@ -1,7 +1,5 @@
 #include "smoothing/bodt_smoother.hpp"
 
-#include "features/flat_pieces.hpp"
-
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -33,17 +31,6 @@ Vec3 BodtSmoother::line_direction(const TetMesh& mesh, int32_t v, const std::arr
     return d.norm() > 1e-6 * side[0].norm() * side[1].norm() ? d : chord;
 }
 
-namespace {
-
-// The flat pieces of the ring triangles (x0, y_i, y_i+1).
-FlatPieces ring_pieces(const TetMesh& mesh, const Vec3& x0, const std::vector<int32_t>& ring) {
-    FlatPieces pieces(x0);
-    for (size_t i = 0; i < ring.size(); ++i) pieces.add(mesh.points[ring[i]], mesh.points[ring[(i + 1) % ring.size()]]);
-    return pieces;
-}
-
-}  // namespace
-
 bool BodtSmoother::ascent_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) {
     const VertexClass c = classes_.cls[v];
     const bool line = c == VertexClass::FeatureLine && classes_.line[v][0] >= 0;
@@ -54,23 +41,41 @@ bool BodtSmoother::ascent_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis
     for (const int32_t* k = surfaces_.begin(v); k != surfaces_.end(v); ++k) {
         std::vector<int32_t>& ring = k == surfaces_.begin(v) ? first_ring_ : ring_;  // as in target()
         surfaces_.surface(*k).one_ring(v, ring);
-        const FlatPieces pieces = ring_pieces(mesh, x0, ring);
+        FlatPieces pieces(x0);
         Vec3 n = Vec3::Zero();  // the ring normal, as add_ring_triangle sums it
-        for (size_t i = 0; i < ring.size(); ++i)
-            n += 0.5 * (mesh.points[ring[i]] - x0).cross(mesh.points[ring[(i + 1) % ring.size()]] - x0);
-        if (!line && pieces.faceted(crease_cosine_)) {  // along a crease, as target() moves v
-            normals_.insert(normals_.end(), pieces.normals(), pieces.normals() + pieces.count());
-            ring_normals_.push_back(n);
-            continue;
+        for (size_t i = 0; i < ring.size(); ++i) {
+            const Vec3 &a = mesh.points[ring[i]], &b = mesh.points[ring[(i + 1) % ring.size()]];
+            const Vec3 area = 0.5 * (a - x0).cross(b - x0);
+            n += area;
+            pieces.add(a, b, area);
         }
-        if (pieces.count() > (line ? 2 : 1)) return false;
-        normals_.push_back(n);
+        if (line) {
+            if (pieces.count() > 2) return false;
+            normals_.push_back(n);
+        } else if (!add_ring_normals(pieces, n) && pieces.count() > 1) {
+            return false;  // neither flat nor a crease (along which target() moves v too)
+        }
     }
     if (line) {
         const Vec3 a = mesh.points[classes_.line[v][0]] - x0, b = mesh.points[classes_.line[v][1]] - x0;
         if (a.cross(b).norm() > FlatPieces::kFlat * a.norm() * b.norm()) return false;
     }
     return move_basis(mesh, v, basis);
+}
+
+// Where the surface around v is faceted, any move off the pieces' common
+// line (or a move at all, where three meet at a point) takes v off them and
+// the surface off its shape, also at creases below the feature angle (the
+// roofs and bevels of `house2` moved by 1.2 % of its size): one normal per
+// piece, and the ring's own normal kept aside (move_basis).
+bool BodtSmoother::add_ring_normals(const FlatPieces& pieces, const Vec3& n) {
+    if (!pieces.faceted(crease_cosine_)) {
+        normals_.push_back(n);
+        return false;
+    }
+    normals_.insert(normals_.end(), pieces.normals(), pieces.normals() + pieces.count());
+    ring_normals_.push_back(n);
+    return true;
 }
 
 bool BodtSmoother::move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis) {
@@ -153,24 +158,17 @@ Plan BodtSmoother::target(const TetMesh& mesh, int32_t v, const StarTable& star,
         std::vector<int32_t>& ring = k == surfaces_.begin(v) ? first_ring_ : ring_;
         surfaces_.surface(*k).one_ring(v, ring);
         Vec3 n = Vec3::Zero();
+        FlatPieces pieces(x0);
+        const bool creases = crease_cosine_ >= 0.0;  // else none is faceted
         const size_t m = ring.size();
         for (size_t i = 0; i < m; ++i) {
             const int32_t a = ring[i], b = ring[(i + 1) % m];
-            n += add_ring_triangle(model, x0, mesh.points[a], mesh.points[b]);
+            const Vec3 area = add_ring_triangle(model, x0, mesh.points[a], mesh.points[b]);
+            n += area;
+            if (creases) pieces.add(mesh.points[a], mesh.points[b], area);
             surface_faces.push_back(FaceKey::of(v, a, b));
         }
-        // Where the surface around v is faceted, any move off the pieces'
-        // common line (or a move at all, where three meet at a point) takes
-        // v off them and the surface off its shape, also at creases below
-        // the feature angle (the roofs and bevels of `house2` moved by 1.2 %
-        // of its size): one normal per piece.
-        const FlatPieces pieces = ring_pieces(mesh, x0, ring);
-        if (pieces.faceted(crease_cosine_)) {
-            normals_.insert(normals_.end(), pieces.normals(), pieces.normals() + pieces.count());
-            ring_normals_.push_back(n);
-        } else {
-            normals_.push_back(n);
-        }
+        add_ring_normals(pieces, n);
     }
     std::sort(surface_faces.begin(), surface_faces.end());
     surface_faces.erase(std::unique(surface_faces.begin(), surface_faces.end()), surface_faces.end());

@@ -4,6 +4,7 @@
 // and fixed vertices stay.
 #pragma once
 
+#include "features/flat_pieces.hpp"
 #include "features/vertex_classes.hpp"
 #include "mesh/region_surfaces.hpp"
 #include "smoothing/bodt_model.hpp"
@@ -54,6 +55,10 @@ private:
     // leaving its feature line: orthogonal to every ring normal, and along
     // the feature line for a FeatureLine vertex.
     bool move_basis(const TetMesh& mesh, int32_t v, MoveBasis& basis);
+    // Adds ring normal n (a surface's sum_i S_i n_i at v) to normals_, or
+    // the normals of its pieces where they are faceted (then true, and n
+    // goes to ring_normals_).
+    bool add_ring_normals(const FlatPieces& pieces, const Vec3& n);
     Vec3 line_direction(const TetMesh& mesh, int32_t v, const std::array<int32_t, 2>& line);
     Plan move_unless_converged(const Vec3& move, const StarModel& model) const;
 

@@ -61,6 +61,7 @@ public:
     // (TopologyRules::crease_cosine), where any would take the surface off
     // its shape.
     double slope(const EditableMesh& mesh, int32_t v, const TopologyRules& rules) const {
+        if (!(rules.surface_slope > 0.0 && rules.crease_cosine >= 0.0)) return rules.surface_slope;
         FlatPieces pieces(mesh.point(v));
         for (const FaceKey& f : surface_) {
             const int k = f.v[0] == v ? 0 : (f.v[1] == v ? 1 : 2);

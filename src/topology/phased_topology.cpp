@@ -12,8 +12,6 @@ namespace bodt {
 
 namespace {
 
-constexpr double kDegree = M_PI / 180.0;
-
 // What one midpoint split costs a regular tet: the stretch of its halves
 // (about 0.71), the most a recovery change may cost the mesh's worst tet.
 double regular_split_stretch() {

@@ -11,7 +11,6 @@ namespace bodt {
 
 namespace {
 
-constexpr double kDegree = M_PI / 180.0;
 // A change must raise the worst sine by more than round-off.
 constexpr double kGain = 1e-12;
 // ODT relocation is one fixed-point step per round: a few rounds let the
