@@ -33,11 +33,14 @@ void add_star(StarModel& m, const StarTable& star, const Vec3& x0, std::vector<d
     const size_t n = star.size();
     terms.resize(4 * n);
     star_terms(star.opposite(), n, coords(x0), terms.data());
-    double volume = 0.0;
+    double volume = 0.0, gx = m.g.x(), gy = m.g.y(), gz = m.g.z();
     for (size_t s = 0; s < n; ++s) {
         volume += terms[s];
-        m.g += Vec3(terms[n + s], terms[2 * n + s], terms[3 * n + s]);
+        gx += terms[n + s];
+        gy += terms[2 * n + s];
+        gz += terms[3 * n + s];
     }
+    m.g = Vec3(gx, gy, gz);
     m.volume += volume;
     m.Q.diagonal().array() += 0.25 * volume;  // 1/4 |Omega_0| |X|^2, eq. (6)
 }

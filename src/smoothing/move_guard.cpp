@@ -50,6 +50,41 @@ size_t first_failing(const double* opposite, const double* at, size_t n, Coords 
     return first;
 }
 
+// The star tets `tets` (kPlaces of them, repeats allowed) with the vertex
+// at x: failed[j] = 1 where tets[j] fails the guard.  The likeliest
+// failures of a trial, copied into a table of their own, so that one pass
+// of the vectorised kernel checks them all.
+BODT_VECTOR_CLONES
+void fail_among(const double* opposite, const double* at, size_t n, const size_t* tets, Coords x,
+                const double* floor, CosineRange before, bool never_worse, double* failed) {
+    constexpr size_t m = MoveGuard::kPlaces;
+    double rows[9 * m], corner[m], floors[m];
+    for (size_t j = 0; j < m; ++j) {
+        for (size_t r = 0; r < 9; ++r) rows[r * m + j] = opposite[r * n + tets[j]];
+        corner[j] = at[tets[j]];
+        floors[j] = floor[tets[j]];
+    }
+#pragma omp simd
+    for (size_t j = 0; j < m; ++j) {
+        const TetKernel k = star_tet_kernel(rows, corner, m, j, x);
+        failed[j] = shape_passes(k, shape_of(k), floors[j], before, never_worse) ? 0.0 : 1.0;
+    }
+}
+
+// The cached shapes of the n star tets `star`: each tet's stretch floor
+// (min(min_stretch, its stretch)) and extreme cosines, in rows of n.
+BODT_VECTOR_CLONES
+void read_shapes(const int32_t* star, size_t n, const TetShape* cache, double min_stretch, double* floor,
+                 double* of_min, double* of_max) {
+#pragma omp simd
+    for (size_t k = 0; k < n; ++k) {
+        const TetShape& shape = cache[star[k]];
+        floor[k] = std::min(min_stretch, shape.stretch);
+        of_min[k] = shape.cosines.of_min;
+        of_max[k] = shape.cosines.of_max;
+    }
+}
+
 // Star tet s with the vertex at each of kPlaces places (3 rows: x, y, z):
 // failed[j] = 1 where it fails the guard.  One pass of the vectorised
 // kernel over the places costs about what one place does alone.
@@ -87,11 +122,6 @@ uint64_t MoveGuard::failing_attempts(size_t k, const Vec3& start, Vec3 step, int
     return failing;
 }
 
-bool MoveGuard::tet_passes(size_t k, const Coords& x) {
-    return tet_check(star_.opposite(), star_.at(), star_.size(), k, x, floor_[k], star_before_, settings_.never_worse,
-                     after_.data());
-}
-
 bool MoveGuard::acceptable(const TetMesh& mesh, const Vec3& at, const std::vector<FaceKey>& surface_faces) {
     const Coords x = coords(at);
     for (size_t k = 0; k < surface_faces.size(); ++k)
@@ -99,16 +129,22 @@ bool MoveGuard::acceptable(const TetMesh& mesh, const Vec3& at, const std::vecto
     // A shorter move mostly fails where the longer one did: that tet first;
     // then the tets that held the star's extreme angles, which fail most
     // often otherwise.  The order changes no verdict, only its cost.
-    if (last_failed_ < star_.size() && !tet_passes(last_failed_, x)) return false;
-    for (const size_t k : extreme_)
-        if (k != last_failed_ && !tet_passes(k, x)) {
-            last_failed_ = k;
+    const size_t n = star_.size();
+    if (n == 0) return true;
+    const size_t first = last_failed_ < n ? last_failed_ : extreme_[0];
+    const std::array<size_t, kPlaces> likely{first, extreme_[0], extreme_[1], first};
+    std::array<double, kPlaces> failed;
+    fail_among(star_.opposite(), star_.at(), n, likely.data(), x, floor_.data(), star_before_, settings_.never_worse,
+               failed.data());
+    for (size_t j = 0; j < 3; ++j)
+        if (failed[j] != 0.0) {
+            last_failed_ = likely[j];
             return false;
         }
-    const size_t first = first_failing(star_.opposite(), star_.at(), star_.size(), x, floor_.data(), star_before_,
-                                       settings_.never_worse, after_.data(), failed_.data());
-    if (first == star_.size()) return true;
-    last_failed_ = first;
+    const size_t failing = first_failing(star_.opposite(), star_.at(), n, x, floor_.data(), star_before_,
+                                         settings_.never_worse, after_.data(), failed_.data());
+    if (failing == n) return true;
+    last_failed_ = failing;
     return false;
 }
 
@@ -131,17 +167,29 @@ MoveOutcome MoveGuard::move_gathered(TetMesh& mesh, int32_t v, const Vec3& targe
     last_failed_ = n;
     star_before_ = {-1.0, 1.0};
     extreme_ = {0, 0};
+    // Each star tet's cosines go to after_'s rows (scratch until a trial
+    // fills them).
+    double* of_min = after_.data() + n;
+    double* of_max = after_.data() + 2 * n;
+    if (cache_) {
+        read_shapes(star, n, cache_->data(), settings_.min_stretch, floor_.data(), of_min, of_max);
+    } else {
+        for (size_t k = 0; k < n; ++k) {
+            const TetShape shape = tet_shape(mesh.tet_points(star[k]));
+            floor_[k] = std::min(settings_.min_stretch, shape.stretch);
+            of_min[k] = shape.cosines.of_min;
+            of_max[k] = shape.cosines.of_max;
+        }
+    }
     for (size_t k = 0; k < n; ++k) {
-        const TetShape shape = cache_ ? (*cache_)[static_cast<size_t>(star[k])] : tet_shape(mesh.tet_points(star[k]));
-        if (shape.cosines.of_min > star_before_.of_min) {
-            star_before_.of_min = shape.cosines.of_min;
+        if (of_min[k] > star_before_.of_min) {
+            star_before_.of_min = of_min[k];
             extreme_[0] = k;
         }
-        if (shape.cosines.of_max < star_before_.of_max) {
-            star_before_.of_max = shape.cosines.of_max;
+        if (of_max[k] < star_before_.of_max) {
+            star_before_.of_max = of_max[k];
             extreme_[1] = k;
         }
-        floor_[k] = std::min(settings_.min_stretch, shape.stretch);
     }
     star_before_.of_max = std::min(star_before_.of_max, largest_cosine);
     const Vec3 start = mesh.points[v];

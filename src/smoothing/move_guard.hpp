@@ -42,7 +42,8 @@ public:
                               double& distance, double largest_cosine = 1.0);
     StarTable& star() { return star_; }
 
-    // How many trial places of one tet are checked together (a multiple of the vector width).
+    // How many trial places of one tet, or tets at one place, are checked
+    // together (a multiple of the vector width).
     static constexpr size_t kPlaces = 4;
 
 private:
@@ -50,9 +51,6 @@ private:
     // guard; `step` is attempt from's move from start, halved for each
     // later one.
     uint64_t failing_attempts(size_t k, const Vec3& start, Vec3 step, int from) const;
-    // Star tet k passes the guard with v at x (a scalar check, for the tets
-    // most likely to fail).
-    bool tet_passes(size_t k, const Coords& x);
     // v at `at` (also in mesh.points) passes the guard.
     bool acceptable(const TetMesh& mesh, const Vec3& at, const std::vector<FaceKey>& surface_faces);
 

@@ -47,11 +47,7 @@ public:
     // v stayed at its last visit and no vertex of its star moved since.
     bool settled(const TetMesh& mesh, int32_t v) const {
         const uint32_t at = stayed_at_[v];
-        if (at == 0) return false;
-        for (const int32_t* t = mesh.star_begin(v); t != mesh.star_end(v); ++t)
-            for (const int32_t u : mesh.tets[*t])
-                if (moved_at_[u] >= at) return false;
-        return true;
+        return at != 0 && !moved_since(mesh, v, at);
     }
 
     void reserve(size_t vertices) {
@@ -86,6 +82,9 @@ public:
     uint64_t epoch() const { return epoch_; }
 
 private:
+    // A vertex of v's star moved at `at` or later.
+    bool moved_since(const TetMesh& mesh, int32_t v, uint32_t at) const;
+
     std::vector<uint32_t> moved_at_, stayed_at_;  // 0: never
     uint32_t clock_ = 0, base_ = 0;
     uint64_t epoch_ = 0;
