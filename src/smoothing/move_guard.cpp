@@ -50,27 +50,6 @@ size_t first_failing(const double* opposite, const double* at, size_t n, Coords 
     return first;
 }
 
-// The star tets `tets` (kPlaces of them, repeats allowed) with the vertex
-// at x: failed[j] = 1 where tets[j] fails the guard.  The likeliest
-// failures of a trial, copied into a table of their own, so that one pass
-// of the vectorised kernel checks them all.
-BODT_VECTOR_CLONES
-void fail_among(const double* opposite, const double* at, size_t n, const size_t* tets, Coords x,
-                const double* floor, CosineRange before, bool never_worse, double* failed) {
-    constexpr size_t m = MoveGuard::kPlaces;
-    double rows[9 * m], corner[m], floors[m];
-    for (size_t j = 0; j < m; ++j) {
-        for (size_t r = 0; r < 9; ++r) rows[r * m + j] = opposite[r * n + tets[j]];
-        corner[j] = at[tets[j]];
-        floors[j] = floor[tets[j]];
-    }
-#pragma omp simd
-    for (size_t j = 0; j < m; ++j) {
-        const TetKernel k = star_tet_kernel(rows, corner, m, j, x);
-        failed[j] = shape_passes(k, shape_of(k), floors[j], before, never_worse) ? 0.0 : 1.0;
-    }
-}
-
 // The cached shapes of the n star tets `star`: each tet's stretch floor
 // (min(min_stretch, its stretch)) and extreme cosines, in rows of n.
 BODT_VECTOR_CLONES
@@ -85,17 +64,38 @@ void read_shapes(const int32_t* star, size_t n, const TetShape* cache, double mi
     }
 }
 
-// Star tet s with the vertex at each of kPlaces places (3 rows: x, y, z):
-// failed[j] = 1 where it fails the guard.  One pass of the vectorised
-// kernel over the places costs about what one place does alone.
+// kPlaces trials of the guard, each a star tet (repeats allowed) with the
+// vertex at a place of its own: the tets' columns copied out of the star
+// table, so that one pass of the vectorised kernel checks them all for
+// about what one costs alone.  The halvings of one move at one tet
+// (failing_attempts), or the likeliest failures of one place (acceptable).
+struct Trials {
+    static constexpr size_t m = MoveGuard::kPlaces;
+    double rows[9 * m];    // StarTable::opposite's rows for these columns
+    double corner[m];      // StarTable::at
+    double floor[m];       // the tets' stretch floors
+    double places[3 * m];  // x, y, z
+
+    // Column j: star tet s, whose stretch floor is `floor_s`, with the vertex at p.
+    void set(size_t j, const StarTable& star, size_t s, double floor_s, const Coords& p) {
+        const size_t n = star.size();
+        for (size_t r = 0; r < 9; ++r) rows[r * m + j] = star.opposite()[r * n + s];
+        corner[j] = star.at()[s];
+        floor[j] = floor_s;
+        places[j] = p.x;
+        places[m + j] = p.y;
+        places[2 * m + j] = p.z;
+    }
+};
+
+// failed[j] = 1 where trial j fails the guard.
 BODT_VECTOR_CLONES
-void fails_at(const double* opposite, const double* at, size_t n, size_t s, const double* places, double floor,
-              CosineRange before, bool never_worse, double* failed) {
-    constexpr size_t m = MoveGuard::kPlaces;
+void trials_fail(const Trials& t, CosineRange before, bool never_worse, double* failed) {
+    constexpr size_t m = Trials::m;
 #pragma omp simd
     for (size_t j = 0; j < m; ++j) {
-        const TetKernel k = star_tet_kernel(opposite, at, n, s, {places[j], places[m + j], places[2 * m + j]});
-        failed[j] = shape_passes(k, shape_of(k), floor, before, never_worse) ? 0.0 : 1.0;
+        const TetKernel k = star_tet_kernel(t.rows, t.corner, m, j, {t.places[j], t.places[m + j], t.places[2 * m + j]});
+        failed[j] = shape_passes(k, shape_of(k), t.floor[j], before, never_worse) ? 0.0 : 1.0;
     }
 }
 
@@ -107,15 +107,11 @@ uint64_t MoveGuard::failing_attempts(size_t k, const Vec3& start, Vec3 step, int
     if (settings_.backtrack_steps >= 64) return failing;  // one bit per attempt (the parameter allows 50)
     for (int a0 = from; a0 <= settings_.backtrack_steps; a0 += static_cast<int>(m)) {
         // m places, halving as move_gathered does; those past the last attempt are not read.
-        std::array<double, 3 * m> places;
-        for (size_t j = 0; j < m; ++j, step *= 0.5) {
-            const Vec3 p = start + step;
-            for (size_t r = 0; r < 3; ++r) places[r * m + j] = p[static_cast<Eigen::Index>(r)];
-        }
+        Trials trials;
+        for (size_t j = 0; j < m; ++j, step *= 0.5) trials.set(j, star_, k, floor_[k], coords(start + step));
         const int count = std::min(static_cast<int>(m), settings_.backtrack_steps + 1 - a0);
         std::array<double, m> failed;
-        fails_at(star_.opposite(), star_.at(), star_.size(), k, places.data(), floor_[k], star_before_,
-                 settings_.never_worse, failed.data());
+        trials_fail(trials, star_before_, settings_.never_worse, failed.data());
         for (int j = 0; j < count; ++j)
             if (failed[j] != 0.0) failing |= uint64_t{1} << (a0 + j);
     }
@@ -129,14 +125,22 @@ bool MoveGuard::acceptable(const TetMesh& mesh, const Vec3& at, const std::vecto
     // A shorter move mostly fails where the longer one did: that tet first;
     // then the tets that held the star's extreme angles, which fail most
     // often otherwise.  The order changes no verdict, only its cost.
+    // All three in one pass of the vectorised kernel (the fourth trial
+    // repeats the first).
     const size_t n = star_.size();
-    if (n == 0) return true;
+    if (n == 0) return true;  // no tet to check (extreme_ names none)
     const size_t first = last_failed_ < n ? last_failed_ : extreme_[0];
-    const std::array<size_t, kPlaces> likely{first, extreme_[0], extreme_[1], first};
+    constexpr size_t kLikely = 3;
+    static_assert(kPlaces >= kLikely);
+    const std::array<size_t, kLikely> likely{first, extreme_[0], extreme_[1]};
+    Trials trials;
+    for (size_t j = 0; j < kPlaces; ++j) {
+        const size_t k = likely[j % kLikely];
+        trials.set(j, star_, k, floor_[k], x);
+    }
     std::array<double, kPlaces> failed;
-    fail_among(star_.opposite(), star_.at(), n, likely.data(), x, floor_.data(), star_before_, settings_.never_worse,
-               failed.data());
-    for (size_t j = 0; j < 3; ++j)
+    trials_fail(trials, star_before_, settings_.never_worse, failed.data());
+    for (size_t j = 0; j < kLikely; ++j)
         if (failed[j] != 0.0) {
             last_failed_ = likely[j];
             return false;

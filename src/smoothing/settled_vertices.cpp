@@ -25,7 +25,9 @@ bool any_moved(const int32_t* star, size_t n, const int32_t* tets, const uint32_
 
 bool SettledVertices::moved_since(const TetMesh& mesh, int32_t v, uint32_t at) const {
     const int32_t* star = mesh.star_begin(v);
-    return any_moved(star, static_cast<size_t>(mesh.star_end(v) - star), mesh.tets.front().data(), moved_at_.data(), at);
+    static_assert(sizeof(Tet) == 4 * sizeof(int32_t));
+    return any_moved(star, static_cast<size_t>(mesh.star_end(v) - star),
+                     reinterpret_cast<const int32_t*>(mesh.tets.data()), moved_at_.data(), at);
 }
 
 }  // namespace bodt

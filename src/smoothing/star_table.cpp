@@ -40,7 +40,8 @@ void StarTable::gather(const TetMesh& mesh, int32_t v) {
     const int32_t* star = mesh.star_begin(v);
     resize(static_cast<size_t>(mesh.star_end(v) - star));
     static_assert(sizeof(Tet) == 4 * sizeof(int32_t) && sizeof(Vec3) == 3 * sizeof(double));
-    gather_rows(star, size_, mesh.tets.front().data(), mesh.points.front().data(), v, opposite_.data(), at_.data());
+    gather_rows(star, size_, reinterpret_cast<const int32_t*>(mesh.tets.data()),
+                reinterpret_cast<const double*>(mesh.points.data()), v, opposite_.data(), at_.data());
 }
 
 void StarTable::resize(size_t n) {
