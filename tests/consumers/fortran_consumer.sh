@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # fortran_consumer.sh PROGRAM.f90
 # The way a Fortran user builds against an installed libbodt:
-#   PKG_CONFIG_PATH=PREFIX/LIBDIR/pkgconfig gfortran prog.f90 $(pkg-config --cflags --libs bodt-fortran)
-# then runs the program with LD_LIBRARY_PATH=PREFIX/LIBDIR.
+#   PKG_CONFIG_PATH=PREFIX/LIBDIR/pkgconfig
+#   gfortran prog.f90 $(pkg-config --cflags --libs bodt-fortran) -Wl,-rpath,$(pkg-config --variable=libdir bodt)
+# then runs the program without LD_LIBRARY_PATH (libbodt_fortran.so finds
+# libbodt.so beside it through its own run path).
 # Environment: PREFIX LIBDIR INCLUDEDIR VERSION PKG_CONFIG FC SANITIZE_FLAGS WORK_DIR.
 set -euo pipefail
 prog=$1
@@ -31,19 +33,20 @@ for var in includedir libdir; do
   esac
 done
 
-flags=$("$PKG_CONFIG" --cflags --libs bodt-fortran)
+flags="$("$PKG_CONFIG" --cflags --libs bodt-fortran) -Wl,-rpath,$("$PKG_CONFIG" --variable=libdir bodt)"
 echo "pkg-config --cflags --libs bodt-fortran: $flags"
 # Compiled in the work dir: gfortran would write any .mod of the program there.
 # shellcheck disable=SC2086  # word splitting of the flags is intended
 (cd "$WORK_DIR" && "$FC" -std=f2018 -Wall -Wextra -Werror $SANITIZE_FLAGS "$prog" $flags -o prog)
 
+unset LD_LIBRARY_PATH
 for lib in libbodt_fortran libbodt; do
-  resolved=$(LD_LIBRARY_PATH=$libdir ldd "$WORK_DIR/prog" | awk -v lib="$lib" '$1 ~ "^" lib "\\.so" {print $3}')
+  resolved=$(ldd "$WORK_DIR/prog" | awk -v lib="$lib" '$1 ~ "^" lib "\\.so" {print $3}')
   if [[ $(realpath -m "$resolved") != $(realpath -m "$libdir")/* ]]; then
     echo "FAIL: the program loads $lib from '$resolved', not from $libdir"; exit 1
   fi
 done
-output=$(LD_LIBRARY_PATH=$libdir "$WORK_DIR/prog")
+output=$("$WORK_DIR/prog")
 echo "$output"
 expected="libbodt $VERSION from Fortran: 5 vertices, 4 tets, 4 boundary faces"
 if [[ $output != "$expected" ]]; then

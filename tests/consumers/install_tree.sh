@@ -62,9 +62,27 @@ per_config=$(find "$lib/cmake/bodt" -name 'bodtTargets-*.cmake' 2>/dev/null | he
 check "$LIBDIR/cmake/bodt/bodtTargets-<config>.cmake" -n "$per_config"
 check "$BINDIR/bodt" -x "$PREFIX/$BINDIR/bodt"
 
+# The installed command and libbodt_fortran.so find libbodt.so through their
+# run paths ($ORIGIN-relative), without LD_LIBRARY_PATH, also after the
+# tree is moved.
+unset LD_LIBRARY_PATH
 if [[ -x $PREFIX/$BINDIR/bodt ]]; then
-  got=$(LD_LIBRARY_PATH=$lib "$PREFIX/$BINDIR/bodt" --version 2>&1 || true)
+  got=$("$PREFIX/$BINDIR/bodt" --version 2>&1 || true)
   check "installed 'bodt --version' says 'bodt $VERSION' (got '$got')" "$got" = "bodt $VERSION"
+  out=$PREFIX.improved.mesh
+  "$PREFIX/$BINDIR/bodt" improve "$SOURCE_DIR/tests/data/box2.mesh" "$out" --iterations 2 --quiet
+  check "installed 'bodt improve' wrote $out" -s "$out"
+  rm -f "$out"
+  moved=$PREFIX.moved
+  rm -rf "$moved" && cp -a "$PREFIX" "$moved"
+  got=$("$moved/$BINDIR/bodt" --version 2>&1 || true)
+  check "'bodt --version' of the tree copied to $moved says 'bodt $VERSION' (got '$got')" "$got" = "bodt $VERSION"
+  rm -rf "$moved"
+fi
+if [[ ${WITH_FORTRAN:-OFF} == ON ]]; then
+  needs=$(ldd "$lib/libbodt_fortran.so.$VERSION" | awk '$1 ~ /^libbodt\.so/ {print $3}')
+  check "libbodt_fortran.so finds libbodt.so beside it (got '$needs')" \
+    "$(realpath -m "$needs")" = "$(realpath -m "$lib/libbodt.so.$SOVERSION")"
 fi
 
 echo "installed tree:"

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # pkg_config_consumer.sh PROGRAM.c
-# The way a C user builds against an installed libbodt:
-#   PKG_CONFIG_PATH=PREFIX/LIBDIR/pkgconfig cc prog.c $(pkg-config --cflags --libs bodt)
-# then runs the program with LD_LIBRARY_PATH=PREFIX/LIBDIR.
+# The way the README tells a C user to build against an installed libbodt:
+#   PKG_CONFIG_PATH=PREFIX/LIBDIR/pkgconfig
+#   cc prog.c $(pkg-config --cflags --libs bodt) -Wl,-rpath,$(pkg-config --variable=libdir bodt)
+# then runs the program without LD_LIBRARY_PATH.
 # Environment: PREFIX LIBDIR VERSION PKG_CONFIG CC SANITIZE_FLAGS WORK_DIR.
 set -euo pipefail
 prog=$1
@@ -35,13 +36,14 @@ for var in includedir libdir; do
   esac
 done
 
-flags=$("$PKG_CONFIG" --cflags --libs bodt)
+flags="$("$PKG_CONFIG" --cflags --libs bodt) -Wl,-rpath,$("$PKG_CONFIG" --variable=libdir bodt)"
 echo "pkg-config --cflags --libs bodt: $flags"
 # shellcheck disable=SC2086  # word splitting of the flags is intended
 "$CC" -std=c99 -Wall -Wextra -Werror $SANITIZE_FLAGS "$prog" $flags -o "$WORK_DIR/prog"
 
-resolved=$(LD_LIBRARY_PATH=$libdir ldd "$WORK_DIR/prog" | awk '$1 ~ /^libbodt/ {print $3}')
+unset LD_LIBRARY_PATH
+resolved=$(ldd "$WORK_DIR/prog" | awk '$1 ~ /^libbodt/ {print $3}')
 if [[ $(realpath -m "$resolved") != $(realpath -m "$libdir")/* ]]; then
   echo "FAIL: the program loads libbodt from '$resolved', not from $libdir"; exit 1
 fi
-LD_LIBRARY_PATH=$libdir "$WORK_DIR/prog"
+"$WORK_DIR/prog"
