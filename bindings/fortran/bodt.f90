@@ -23,7 +23,8 @@
 !    negative BODT_ERR_* code and the caller checks it.  Omitted, a failure
 !    writes "bodt: <function>: <status>: <message>" to error_unit and stops
 !    the program (error stop): a call that passes no ierr never fails
-!    silently.  bodt_mesh_last_error(mesh) gives the message.
+!    silently.  bodt_mesh_last_error(mesh) gives the message, and
+!    bodt_mesh_last_error() that of a failed create or read (no handle).
 !  - The handle is intent(inout) in every wrapper: besides the C pointer it
 !    holds the message of a call the wrapper refused itself (a wrong array
 !    shape), so that bodt_mesh_last_error tells about that call too.
@@ -480,8 +481,11 @@ contains
     if (present(ierr)) then
       ierr = status
     else if (status /= BODT_OK) then
+      ! The message first: flushed before the runtime's "ERROR STOP" and
+      ! backtrace, which go to standard error unbuffered.
       write (error_unit, '(6a)') 'bodt: ', name, ': ', bodt_status_string(status), ': ', &
         bodt_mesh_last_error(mesh)
+      flush (error_unit)
       error stop
     end if
   end subroutine finish
@@ -534,10 +538,14 @@ contains
 
   ! The message of the last failed call on mesh ('' after a success); for a
   ! handle that bodt_mesh_create or _read did not make, that call's message.
+  ! Without mesh (C's NULL): the message of the last failed create or read
+  ! on this thread.
   function bodt_mesh_last_error(mesh) result(message)
-    type(bodt_mesh_t), intent(in) :: mesh
+    type(bodt_mesh_t), intent(in), optional :: mesh
     character(len=:), allocatable :: message
-    if (allocated(mesh%error)) then
+    if (.not. present(mesh)) then
+      message = f_string(c_bodt_mesh_last_error(c_null_ptr))
+    else if (allocated(mesh%error)) then
       message = mesh%error
     else
       message = f_string(c_bodt_mesh_last_error(mesh%ptr))

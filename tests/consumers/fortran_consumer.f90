@@ -14,7 +14,7 @@ program fortran_consumer
   if (bodt_version_number() /= BODT_MODULE_VERSION_NUMBER) error stop 'module and library versions differ'
   call bodt_mesh_create(points, tets + 1, mesh, ierr=ierr)  ! vertex 6 of 5
   if (ierr /= BODT_ERR_BAD_MESH) error stop 'bad mesh not refused'
-  if (len(bodt_mesh_last_error(mesh)) == 0) error stop 'no message for the refused mesh'
+  if (index(bodt_mesh_last_error(), 'vertex 6') == 0) error stop 'no message for the refused mesh'
   call bodt_mesh_create(points, tets, mesh)
   call bodt_mesh_quality(mesh, q)
   print '(3a, i0, a, i0, a, i0, a)', 'libbodt ', bodt_version_string(), ' from Fortran: ', q%num_vertices, &

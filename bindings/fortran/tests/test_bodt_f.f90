@@ -436,6 +436,8 @@ contains
     call check(.not. c_associated(mesh%ptr), 'no handle after a failed create')
     call check_contains(bodt_mesh_last_error(mesh), 'tet 2 uses vertex 9, but the mesh has 8 vertices', &
                         '1-based message')
+    call check_contains(bodt_mesh_last_error(), 'tet 2 uses vertex 9, but the mesh has 8 vertices', &
+                        'the failed create''s message without a handle')
     call bodt_mesh_create(points, bad - 1, mesh, index_base=0, ierr=ierr)
     call check_contains(bodt_mesh_last_error(mesh), 'tet 1 uses vertex 8', '0-based message')
 
@@ -558,6 +560,8 @@ contains
     call check_status(ierr, BODT_ERR_IO, 'a missing file', back)
     call check_contains(bodt_mesh_last_error(back), "'no such dir/missing.mesh'", &
                         'the message names the file, without the trailing blanks')
+    call check_contains(bodt_mesh_last_error(), "'no such dir/missing.mesh'", &
+                        'the failed read''s message without a handle')
   end subroutine test_files
 
   ! Inverted tets: refused, unless BODT_CREATE_ACCEPT_INVERTED (create_ex,
