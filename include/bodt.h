@@ -15,8 +15,10 @@
  *    state: different handles may be used from different threads at once;
  *    one handle must not be used from two threads at the same time.
  *  - Indices (vertices, tets) are 0- or 1-based, as chosen by the caller in
- *    bodt_mesh_create(); every index the library takes or gives, in arrays
- *    and in messages, uses that base.
+ *    bodt_mesh_create() (or bodt_mesh_read_ex()); every index the library
+ *    takes or gives, in arrays and in messages, uses that base.  The one
+ *    exception is a reader's message about the file's text (with its line
+ *    or byte offset), which quotes the file's own numbers.
  *  - Output arrays are caller-allocated; each getter takes the array's
  *    capacity in elements and refuses (BODT_ERR_INVALID_ARGUMENT) a capacity
  *    that is too small.
@@ -90,7 +92,13 @@ enum bodt_create_flag {
      * random is then created and smoothed as fast as a well-ordered one.
      * The caller never sees that order (see "Internal order" below); this
      * flag only costs speed on badly ordered input. */
-    BODT_CREATE_KEEP_ORDER = 4
+    BODT_CREATE_KEEP_ORDER = 4,
+    /* bodt_mesh_read_ex() only: the handle counts as the file does (1 for
+     * Medit and for Gmsh files whose node tags are 1..n, as its .node says
+     * for TetGen, 0 for VTK and other Gmsh files), so that indices and
+     * messages match the file.  bodt_mesh_get_index_base() tells which.
+     * Not with BODT_CREATE_ONE_BASED. */
+    BODT_CREATE_FILE_BASE = 8
 };
 
 /*
@@ -795,16 +803,19 @@ enum bodt_format {
 /*
  * Read a mesh from a file, in the format its extension says (enum
  * bodt_format).  The handle's index base is 0 (1 with bodt_mesh_read_ex and
- * BODT_CREATE_ONE_BASED).  On failure, bodt_mesh_last_error(NULL) says why:
- * BODT_ERR_IO for a file that cannot be read or parsed (with the line
- * number or byte offset), BODT_ERR_BAD_MESH for a parsed mesh that is not
- * valid (with the entities in the file's own numbering),
+ * BODT_CREATE_ONE_BASED, the file's with BODT_CREATE_FILE_BASE).  On
+ * failure, bodt_mesh_last_error(NULL) says why: BODT_ERR_IO for a file that
+ * cannot be read or parsed (with the line number or byte offset, and the
+ * file's own numbers), BODT_ERR_BAD_MESH for a parsed mesh that is not
+ * valid (naming the entities in the handle's base, which the message
+ * states, with the file's when it differs: "... tet 113 (numbered from 0; the
+ * file numbers from 1)"),
  * BODT_ERR_UNSUPPORTED for an unknown extension or a format that cannot be
  * read.
  */
 BODT_API int bodt_mesh_read(const char *path, bodt_mesh **mesh);
-/* bodt_mesh_read() with bodt_create_flag bits (ACCEPT_INVERTED, ONE_BASED,
- * KEEP_ORDER: the file's order is the caller's). */
+/* bodt_mesh_read() with bodt_create_flag bits (ACCEPT_INVERTED, ONE_BASED
+ * or FILE_BASE, KEEP_ORDER: the file's order is the caller's). */
 BODT_API int bodt_mesh_read_ex(const char *path, uint32_t flags,
                                bodt_mesh **mesh);
 /* bodt_mesh_read_ex() in the given enum bodt_format, whatever the

@@ -703,6 +703,55 @@ static void test_read_one_based(void **state) {
     assert_contains(bodt_mesh_last_error(NULL), "index_base");
 }
 
+/* A bad mesh in a file is named in the handle's base, which the message
+ * says, with the file's when it differs; BODT_CREATE_FILE_BASE gives the
+ * handle the file's base (Medit 1, a 0-based TetGen file 0).  Bad flags are
+ * refused before the file is read. */
+static void test_read_message_bases(void **state) {
+    (void)state;
+    const char *path = path_of("repeated_vertex.mesh");
+    write_text(path, "MeshVersionFormatted 2\nDimension 3\nVertices\n5\n"
+                     "0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n1 1 1 0\n"
+                     "Tetrahedra\n2\n1 2 3 4 0\n2 3 3 5 0\nEnd\n");
+    bodt_mesh *h = (bodt_mesh *)&h;
+    assert_int_equal(bodt_mesh_read(path, &h), BODT_ERR_BAD_MESH);
+    assert_null(h);
+    assert_contains(bodt_mesh_last_error(NULL), "tet 1 uses vertex 2 twice (numbered from 0; the file numbers from 1)");
+    assert_int_equal(bodt_mesh_read_ex(path, BODT_CREATE_ONE_BASED, &h), BODT_ERR_BAD_MESH);
+    assert_contains(bodt_mesh_last_error(NULL), "tet 2 uses vertex 3 twice (numbered from 1)");
+    assert_int_equal(bodt_mesh_read_ex(path, BODT_CREATE_FILE_BASE, &h), BODT_ERR_BAD_MESH);
+    assert_contains(bodt_mesh_last_error(NULL), "tet 2 uses vertex 3 twice (numbered from 1)");
+    assert_null(strstr(bodt_mesh_last_error(NULL), "the file numbers"));
+
+    const char *cube = path_of("cube_file_base.mesh");
+    write_text(cube, cube_mesh);
+    bodt_mesh *medit = read_ok(cube, BODT_CREATE_FILE_BASE);
+    int base = -1;
+    assert_int_equal(bodt_mesh_get_index_base(medit, &base), BODT_OK);
+    assert_int_equal(base, 1);
+    const char *node = path_of("file_base.node");
+    assert_int_equal(bodt_mesh_write(medit, node), BODT_OK); /* written 0-based */
+    bodt_mesh *tetgen = read_ok(node, BODT_CREATE_FILE_BASE);
+    assert_int_equal(bodt_mesh_get_index_base(tetgen, &base), BODT_OK);
+    assert_int_equal(base, 0);
+    const char *vtk = path_of("file_base.vtk");
+    assert_int_equal(bodt_mesh_write(medit, vtk), BODT_OK);
+    bodt_mesh *legacy = read_ok(vtk, BODT_CREATE_FILE_BASE);
+    assert_int_equal(bodt_mesh_get_index_base(legacy, &base), BODT_OK);
+    assert_int_equal(base, 0);
+    bodt_mesh_destroy(legacy);
+    bodt_mesh_destroy(tetgen);
+    bodt_mesh_destroy(medit);
+
+    h = (bodt_mesh *)&h;
+    assert_int_equal(bodt_mesh_read_ex(path_of("no such file.mesh"), 64, &h), BODT_ERR_INVALID_ARGUMENT);
+    assert_null(h);
+    assert_contains(bodt_mesh_last_error(NULL), "unknown flag bits");
+    assert_int_equal(bodt_mesh_read_ex(cube, BODT_CREATE_ONE_BASED | BODT_CREATE_FILE_BASE, &h),
+                     BODT_ERR_INVALID_ARGUMENT);
+    assert_contains(bodt_mesh_last_error(NULL), "exclude each other");
+}
+
 /* Every Medit edge is a feature edge with its ref; Ridges (indices into
  * Edges) add nothing.  They are written back as Edges + Ridges naming every
  * edge and survive a round trip.  A ridge that is not one of the edges is a
@@ -1115,6 +1164,7 @@ int main(void) {
         cmocka_unit_test(test_medit_handwritten),
         cmocka_unit_test(test_vtk_handwritten),
         cmocka_unit_test(test_read_one_based),
+        cmocka_unit_test(test_read_message_bases),
         cmocka_unit_test(test_medit_ridges),
         cmocka_unit_test(test_read_inverted_flag),
         cmocka_unit_test(test_medit_good_reference),

@@ -55,7 +55,7 @@ module bodt
     BODT_ERR_IO = -6, BODT_ERR_CANCELLED = -7, BODT_ERR_UNSUPPORTED = -8
   ! enum bodt_create_flag
   integer(c_int32_t), parameter, public :: BODT_CREATE_DEFAULT = 0, BODT_CREATE_ACCEPT_INVERTED = 1, &
-    BODT_CREATE_ONE_BASED = 2, BODT_CREATE_KEEP_ORDER = 4
+    BODT_CREATE_ONE_BASED = 2, BODT_CREATE_KEEP_ORDER = 4, BODT_CREATE_FILE_BASE = 8
   ! enum bodt_vertex_class
   integer(c_int32_t), parameter, public :: &
     BODT_VERTEX_INTERIOR = 0, BODT_VERTEX_SURFACE = 1, BODT_VERTEX_FEATURE_LINE = 2, &
@@ -644,6 +644,11 @@ contains
     integer(c_int), intent(out), optional :: ierr
     integer(c_int) :: base
     character(len=12) :: text
+    if (iand(flags, BODT_CREATE_FILE_BASE) /= 0 .and. .not. present(index_base)) then
+      ! The file's base: bodt_mesh_get_index_base tells which.
+      call finish(c_bodt_mesh_read_format(c_path(path), format, flags, mesh%ptr), name, mesh, ierr)
+      return
+    end if
     base = 1
     if (present(index_base)) base = index_base
     if (base == 0) then

@@ -241,12 +241,34 @@ void add_quality_fields(const bodt::TetMesh& mesh, bodt::MeshData& data) {
     }
 }
 
-// A handle for a mesh read from a file.  Problems with the mesh itself are
-// BODT_ERR_BAD_MESH, named in the file's own numbering; the handle then
-// counts from 0, or from 1 with BODT_CREATE_ONE_BASED.
-bodt_mesh* from_mesh_data(const bodt::MeshData& d, uint32_t flags) {
-    const int handle_base = (flags & BODT_CREATE_ONE_BASED) ? 1 : 0;
-    flags &= ~static_cast<uint32_t>(BODT_CREATE_ONE_BASED);
+// The flags bodt_mesh_read_ex() takes, checked before the file is read.
+void check_read_flags(uint32_t flags) {
+    const uint32_t known = BODT_CREATE_ACCEPT_INVERTED | BODT_CREATE_ONE_BASED | BODT_CREATE_KEEP_ORDER |
+                           BODT_CREATE_FILE_BASE;
+    require(!(flags & ~known), "unknown flag bits");
+    require(!((flags & BODT_CREATE_ONE_BASED) && (flags & BODT_CREATE_FILE_BASE)),
+            "BODT_CREATE_ONE_BASED and BODT_CREATE_FILE_BASE exclude each other");
+}
+
+// Every vertex index of `d` moved from d.base to `base`.
+void rebase(bodt::MeshData& d, int base) {
+    const int32_t shift = base - d.base;
+    for (std::vector<int32_t>* a : {&d.tets, &d.triangles, &d.fixed, &d.corners, &d.feature_edges})
+        for (int32_t& v : *a) v += shift;
+    d.base = base;
+}
+
+// A handle for a mesh read from a file, counting from 0, from 1 with
+// BODT_CREATE_ONE_BASED, or as the file does with BODT_CREATE_FILE_BASE.
+// Problems with the mesh itself are BODT_ERR_BAD_MESH, named in that base,
+// which the message states (and the file's, when it differs).
+bodt_mesh* from_mesh_data(bodt::MeshData&& d, uint32_t flags) {
+    const int file_base = d.base;
+    const int handle_base = (flags & BODT_CREATE_FILE_BASE)  ? file_base
+                            : (flags & BODT_CREATE_ONE_BASED) ? 1
+                                                              : 0;
+    flags &= ~static_cast<uint32_t>(BODT_CREATE_ONE_BASED | BODT_CREATE_FILE_BASE);
+    rebase(d, handle_base);
     if (d.xyz.size() / 3 > INT32_MAX || d.tets.size() / 4 > INT32_MAX)
         throw Error(BODT_ERR_UNSUPPORTED, "the mesh has more than 2^31 - 1 vertices or tets");
     if (d.tets.empty()) throw Error(BODT_ERR_BAD_MESH, "the file has no tets");
@@ -267,11 +289,17 @@ bodt_mesh* from_mesh_data(const bodt::MeshData& d, uint32_t flags) {
         apply_feature_edges(h.get(), static_cast<int32_t>(d.feature_edges.size() / 2), d.feature_edges.data(),
                             d.edge_refs.empty() ? nullptr : d.edge_refs.data());
         if (!d.vertex_refs.empty()) apply_vertex_refs(h.get(), d.vertex_refs.data());
-        h->index_base = handle_base;
         return h.release();
     } catch (const Error& e) {
-        if (e.status() == BODT_ERR_INVALID_ARGUMENT) throw Error(BODT_ERR_BAD_MESH, e.what());
-        throw;
+        if (e.status() != BODT_ERR_INVALID_ARGUMENT && e.status() != BODT_ERR_BAD_MESH) throw;
+        std::string message = e.what();
+        std::vector<std::string> notes;
+        if (message.find("(numbered from") == std::string::npos)
+            notes.push_back("numbered from " + std::to_string(handle_base));
+        if (file_base != handle_base) notes.push_back("the file numbers from " + std::to_string(file_base));
+        for (size_t k = 0; k < notes.size(); ++k) message += (k ? "; " : " (") + notes[k];
+        if (!notes.empty()) message += ")";
+        throw Error(BODT_ERR_BAD_MESH, message);
     }
 }
 
@@ -630,9 +658,10 @@ int bodt_mesh_read_format(const char* path, int format, uint32_t flags, bodt_mes
     bodt_mesh* created = nullptr;
     const int status = guarded(nullptr, [&] {
         require(path != nullptr, "path is NULL");
-        const bodt::MeshData data = bodt::read_mesh_file(path, bodt::format_from_code(format, path));
+        check_read_flags(flags);
+        bodt::MeshData data = bodt::read_mesh_file(path, bodt::format_from_code(format, path));
         try {
-            created = from_mesh_data(data, flags);
+            created = from_mesh_data(std::move(data), flags);
         } catch (const Error& e) {
             throw Error(e.status(), std::string(path) + ": " + e.what());
         }

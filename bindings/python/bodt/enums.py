@@ -43,6 +43,7 @@ class CreateFlag(IntFlag):
     ACCEPT_INVERTED = 1
     ONE_BASED = 2
     KEEP_ORDER = 4
+    FILE_BASE = 8
 
 
 class VertexClass(IntEnum):
