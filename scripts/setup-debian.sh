@@ -19,6 +19,7 @@ packages=(
   python3-numpy     # the Python package (bindings/python) and its tests
   python3-cffi      # the test that loads the installed bodt.h with cffi
   python3-meshio    # interop_meshio: meshio reads our .vtu / .vtk and writes the ones we read
+  calculix-ccx      # interop_calculix: CalculiX solves a bar from our .inp
   abigail-tools     # abidiff: the ABI check against tests/consumers/libbodt.abi
   chromium          # renders the HTML report headless in its test (screenshot)
   clang             # clang++ for the libFuzzer targets of the readers (tests/fuzz)

@@ -32,8 +32,10 @@
 //                     exact when their shortest form fits CalculiX's 20
 //                     characters (else within 5e-15), element volumes positive, ELSETs = regions,
 //                     NSET FIXED, NSET REF_<r> per nonzero vertex ref (none
-//                     for 0), surfaces = the marked triangles with Abaqus's
-//                     C3D4 face numbering, <= 16 entries per line
+//                     for 0), NSET NALL, NSET MARKER_<m>_NODES = the nodes of the
+//                     triangles marked m, surfaces = the marked triangles
+//                     with Abaqus's C3D4 face numbering, <= 16 entries per
+//                     line (CalculiX solves from such a file: tests/interop)
 #include "common/error.hpp"
 #include "io/abaqus.hpp"
 #include "io/mesh_io.hpp"
@@ -743,15 +745,30 @@ void test_abaqus(void**) {
     std::sort(fixed.begin(), fixed.end());
     fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
     CHECK(inp.nsets.count("FIXED") && inp.nsets.at("FIXED") == fixed, "NSET FIXED");
-    // REF_<r>: the nodes of each nonzero vertex ref, and no other node set.
-    std::map<std::string, std::vector<long>> ref_sets;
+    // REF_<r>: the nodes of each nonzero vertex ref; MARKER_<m>_NODES: the
+    // nodes of each marker's triangles (sorted, each once); no other node set.
+    std::map<std::string, std::vector<long>> ref_sets, marker_sets;
     for (size_t v = 0; v < nv; ++v)
         if (d.vertex_refs[v] != 0) ref_sets["REF_" + abaqus_id(d.vertex_refs[v])].push_back(static_cast<long>(v) + 1);
     CHECK(ref_sets.size() >= 3 && ref_sets.count("REF_N1"), "test mesh lacks vertex refs, a negative one among them");
-    CHECK(inp.nsets.size() == ref_sets.size() + 1, "%zu node sets for %zu refs and FIXED", inp.nsets.size(),
-          ref_sets.size());
-    for (const auto& [name, nodes] : ref_sets)
-        CHECK(inp.nsets.count(name) && inp.nsets.at(name) == nodes, "NSET %s", name.c_str());
+    for (size_t f = 0; f < d.tri_markers.size(); ++f) {
+        std::vector<long>& set = marker_sets["MARKER_" + abaqus_id(d.tri_markers[f]) + "_NODES"];
+        for (int k = 0; k < 3; ++k) set.push_back(d.triangles[3 * f + k]);  // base 1 = node numbers
+    }
+    for (auto& [name, nodes] : marker_sets) {
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    }
+    CHECK(marker_sets.size() >= 3 && marker_sets.count("MARKER_N3_NODES"), "test mesh lacks markers");
+    CHECK(inp.nsets.size() == ref_sets.size() + marker_sets.size() + 2,
+          "%zu node sets for %zu refs, %zu markers, FIXED and NALL", inp.nsets.size(), ref_sets.size(),
+          marker_sets.size());
+    std::vector<long> all(nv);
+    for (size_t v = 0; v < nv; ++v) all[v] = static_cast<long>(v) + 1;
+    CHECK(inp.nsets.count("NALL") && inp.nsets.at("NALL") == all, "NSET NALL");
+    for (const auto* sets : {&ref_sets, &marker_sets})
+        for (const auto& [name, nodes] : *sets)
+            CHECK(inp.nsets.count(name) && inp.nsets.at(name) == nodes, "NSET %s", name.c_str());
     // Surfaces: each face's nodes (Abaqus C3D4 numbering) are a marked triangle.
     const int face_nodes[4][3] = {{1, 2, 3}, {1, 4, 2}, {2, 4, 3}, {3, 4, 1}};
     std::map<int32_t, std::set<Tri>> marked;
