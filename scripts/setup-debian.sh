@@ -12,11 +12,14 @@ packages=(
   libeigen3-dev     # MPL-2.0, header-only, used by the core
   libopenmesh-dev   # BSD-3-Clause, used by the core
   libcmocka-dev     # Apache-2.0, unit tests
+  zlib1g-dev        # zlib, in libbodt.so: reads zlib-compressed .vtu (ParaView's and meshio's default)
   libtet1.5-dev     # AGPL-3, command-line tool and tests only (never libbodt.so)
   gfortran          # the Fortran module (bindings/fortran) and its tests
   python3           # tests may parse JSON with /usr/bin/python3
   python3-numpy     # the Python package (bindings/python) and its tests
   python3-cffi      # the test that loads the installed bodt.h with cffi
+  python3-meshio    # interop_meshio: meshio reads our .vtu / .vtk and writes the ones we read
+  calculix-ccx      # interop_calculix: CalculiX solves a bar from our .inp
   abigail-tools     # abidiff: the ABI check against tests/consumers/libbodt.abi
   chromium          # renders the HTML report headless in its test (screenshot)
   clang             # clang++ for the libFuzzer targets of the readers (tests/fuzz)

@@ -40,7 +40,11 @@
 //   VTK 9.1 metadata  VTK's own output with COMPONENT_NAMES holding an empty
 //                     name (an empty line inside the METADATA block)
 //   meshio            meshio 5.0's ASCII and binary files (vtktypeint32,
-//                     one value a line, no final newline)
+//                     one value a line, no final newline); regions and
+//                     markers from gmsh:physical, CellEntityIds or
+//                     medit:ref, vertex refs from medit:ref, the precedence
+//                     of vtk_cells.hpp when several are present, a short
+//                     overridden array still refused
 //   refusals          POLYDATA, STRUCTURED_GRID, hexahedra, quadratic tets,
 //                     the bit type, string arrays, no tets, a second POINTS,
 //                     CELLS, CELL_TYPES or DATASET, unsigned 64-bit values
@@ -66,7 +70,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -77,7 +80,6 @@
 #include <fstream>
 #include <limits>
 #include <map>
-#include <new>
 #include <set>
 #include <sstream>
 #include <string>
@@ -86,36 +88,12 @@
 #include "core_checks.hpp"
 #include "kuhn_block_data.hpp"
 
-// ------------------------------------------------------------ allocation probe
-
-// The largest single allocation since the last reset: the reader must not
-// allocate from a count before the bytes present are known to hold it.
-namespace {
-std::atomic<size_t> g_largest_alloc{0};
-
-// Out of line, so that g++ does not see malloc and free meet new and delete
-// (-Wmismatched-new-delete).
-[[gnu::noinline]] void* probe_alloc(size_t n) {
-    size_t seen = g_largest_alloc.load(std::memory_order_relaxed);
-    while (n > seen && !g_largest_alloc.compare_exchange_weak(seen, n, std::memory_order_relaxed)) {
-    }
-    void* p = std::malloc(n ? n : 1);
-    if (!p) throw std::bad_alloc();
-    return p;
-}
-[[gnu::noinline]] void probe_free(void* p) noexcept { std::free(p); }
-}  // namespace
-
-void* operator new(size_t n) { return probe_alloc(n); }
-void* operator new[](size_t n) { return probe_alloc(n); }
-void operator delete(void* p) noexcept { probe_free(p); }
-void operator delete[](void* p) noexcept { probe_free(p); }
-void operator delete(void* p, size_t) noexcept { probe_free(p); }
-void operator delete[](void* p, size_t) noexcept { probe_free(p); }
+#include "alloc_probe.hpp"
 
 namespace {
 
-constexpr size_t kAllocLimit = size_t{16} << 20;
+using io_test::g_largest_alloc;
+using io_test::kAllocLimit;
 
 std::string g_dir = "test_io_vtk_files";
 
@@ -1115,12 +1093,50 @@ void test_vtk91_metadata(void**) {
     CHECK(v.regions.empty() && v.fixed.empty() && v.triangles.empty(), "data from nowhere");
 }
 
-// meshio 5.0: vtktypeint64 / vtktypeint32 FIELD arrays, no final newline.
+// meshio 5.0: vtktypeint64 / vtktypeint32 FIELD arrays, no final newline;
+// its names for Gmsh's physical groups and Medit's refs (one array for every
+// cell), VTK's CellEntityIds, and the precedence of vtk_cells.hpp.
 void test_meshio(void**) {
     const char* what = "meshio";
     Expect mio;
     mio.corners = {};
-    expect_all_read(what, {{"meshio.vtk", kMeshio, mio}, {"meshio_binary.vtk", meshio_binary(), mio}});
+    const std::string ours = "region 1 4 vtktypeint64\n3 4 -1 -1\nmarker 1 4 vtktypeint64\n-1 -1 7 12";
+    auto cells = [&](const std::string& arrays, int n) {
+        return replace(what, replace(what, kMeshio, ours, arrays), "CELL_DATA 4\nFIELD FieldData 2",
+                       "CELL_DATA 4\nFIELD FieldData " + std::to_string(n));
+    };
+    const std::string geometrical = "gmsh:geometrical 1 4 vtktypeint32\n1 2 3 4";
+    std::vector<Good> cases = {{"meshio.vtk", kMeshio, mio}, {"meshio_binary.vtk", meshio_binary(), mio}};
+    for (const char* name : {"gmsh:physical", "CellEntityIds", "medit:ref"})
+        cases.push_back({std::string("meshio_") + name + ".vtk",
+                         cells(std::string(name) + " 1 4 vtktypeint32\n3 4 7 12\n" + geometrical, 2), mio});
+    // medit:ref of the points: the vertex refs.
+    cases.push_back({"meshio_point_ref.vtk",
+                     replace(what, kMeshio, "ref 1 5 vtktypeint32", "medit:ref 1 5 vtktypeint32"), mio});
+    // region and marker before gmsh:physical, gmsh:physical before
+    // CellEntityIds, CellEntityIds before medit:ref; ref before medit:ref.
+    const std::string physical = "gmsh:physical 1 4 vtktypeint32\n13 14 17 22\n";
+    const std::string ids = "CellEntityIds 1 4 vtktypeint32\n23 24 27 32\n";
+    const std::string medit = "medit:ref 1 4 vtktypeint32\n33 34 37 42\n";
+    cases.push_back({"meshio_ours_first.vtk", cells(medit + ids + physical + ours, 5), mio});
+    Expect p = mio;
+    p.regions = {13, 14}, p.markers = {17}, p.edge_refs = {22};
+    cases.push_back({"meshio_physical_first.vtk", cells(medit + ids + physical + geometrical, 4), p});
+    Expect i = mio;
+    i.regions = {23, 24}, i.markers = {27}, i.edge_refs = {32};
+    cases.push_back({"meshio_ids_first.vtk", cells(medit + ids + geometrical, 3), i});
+    Expect mixed = mio;
+    mixed.regions = {13, 14};
+    cases.push_back({"meshio_marker_physical.vtk",
+                     cells(physical + "marker 1 4 vtktypeint64\n-1 -1 7 12", 2), mixed});
+    cases.push_back({"meshio_both_refs.vtk",
+                     replace(what, kMeshio, "FIELD FieldData 2\nfixed",
+                             "FIELD FieldData 3\nmedit:ref 1 5 vtktypeint32\n9 9 9 9 9\nfixed"),
+                     mio});
+    expect_all_read(what, cases);
+    // Each array read is checked, also one that another one overrides.
+    expect_malformed(what, "meshio_short_physical.vtk", cells(ours + "\ngmsh:physical 1 3 vtktypeint32\n1 2 3", 3),
+                     "the gmsh:physical array has 3 tuples for 4 cells", kAnyLine);
 }
 
 void test_refusals(void**) {

@@ -18,8 +18,13 @@
 //                     together or separately, comments, CDATA, entities);
 //                     point data ref (Int16) and corner read, absent arrays
 //                     give no vertex refs, no corners, edge ref 0
-//   refusals          appended data, compression, big-endian, hexahedra,
-//                     quadratic tets, polyhedra, several Pieces
+//   array names       regions, markers and edge refs from region, marker,
+//                     gmsh:physical, CellEntityIds, medit:ref in all 32
+//                     combinations, vertex refs from ref and medit:ref: the
+//                     precedence of vtk_cells.hpp; a short overridden array
+//                     still refused
+//   refusals          LZ4, LZMA and unknown compressors, big-endian,
+//                     hexahedra, quadratic tets, polyhedra, several Pieces
 //   malformed         40 broken files (also bad ref, corner and marker
 //                     arrays): each an Error(BODT_ERR_IO) whose message
 //                     starts with "<path>:<line>: "
@@ -27,8 +32,10 @@
 //                     exact when their shortest form fits CalculiX's 20
 //                     characters (else within 5e-15), element volumes positive, ELSETs = regions,
 //                     NSET FIXED, NSET REF_<r> per nonzero vertex ref (none
-//                     for 0), surfaces = the marked triangles with Abaqus's
-//                     C3D4 face numbering, <= 16 entries per line
+//                     for 0), NSET NALL, NSET MARKER_<m>_NODES = the nodes of the
+//                     triangles marked m, surfaces = the marked triangles
+//                     with Abaqus's C3D4 face numbering, <= 16 entries per
+//                     line (CalculiX solves from such a file: tests/interop)
 #include "common/error.hpp"
 #include "io/abaqus.hpp"
 #include "io/mesh_io.hpp"
@@ -55,6 +62,7 @@
 
 #include "core_checks.hpp"
 #include "kuhn_block_data.hpp"
+#include "vtu_bytes.hpp"
 
 namespace {
 
@@ -74,54 +82,9 @@ std::string read_text(const std::string& path) {
     return s.str();
 }
 
-// ------------------------------------------------------------ base64 (test's own)
-
-std::string b64(const std::vector<uint8_t>& bytes) {
-    static const char* a = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t k = 0; k < bytes.size(); k += 3) {
-        const uint32_t b0 = bytes[k], b1 = k + 1 < bytes.size() ? bytes[k + 1] : 0u,
-                       b2 = k + 2 < bytes.size() ? bytes[k + 2] : 0u;
-        const uint32_t g = (b0 << 16) | (b1 << 8) | b2;
-        out += a[(g >> 18) & 63];
-        out += a[(g >> 12) & 63];
-        out += k + 1 < bytes.size() ? a[(g >> 6) & 63] : '=';
-        out += k + 2 < bytes.size() ? a[g & 63] : '=';
-    }
-    return out;
-}
-
-std::vector<uint8_t> unb64(const std::string& s) {
-    std::vector<uint8_t> out;
-    uint32_t g = 0;
-    int n = 0, pad = 0;
-    for (char c : s) {
-        int v;
-        if (c >= 'A' && c <= 'Z') v = c - 'A';
-        else if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
-        else if (c >= '0' && c <= '9') v = c - '0' + 52;
-        else if (c == '+') v = 62;
-        else if (c == '/') v = 63;
-        else if (c == '=') v = 0, ++pad;
-        else continue;
-        g = (g << 6) | static_cast<uint32_t>(v);
-        if (++n == 4) {
-            out.push_back(static_cast<uint8_t>(g >> 16));
-            if (pad < 2) out.push_back(static_cast<uint8_t>(g >> 8));
-            if (pad < 1) out.push_back(static_cast<uint8_t>(g));
-            n = pad = 0;
-            g = 0;
-        }
-    }
-    return out;
-}
-
-template <class T>
-void put_le(std::vector<uint8_t>& out, T value) {
-    uint8_t b[sizeof(T)];
-    std::memcpy(b, &value, sizeof(T));  // the test machine is little-endian (checked in main)
-    out.insert(out.end(), b, b + sizeof(T));
-}
+using io_test::b64;
+using io_test::put_le;
+using io_test::unb64;
 
 // A binary DataArray body: header (UInt32 or UInt64) + data, encoded together
 // (VTK) or separately (meshio's other convention).
@@ -430,19 +393,74 @@ void test_hand_written(void**) {
     CHECK(d2.tets.size() == 8, "tets");
 }
 
+// Regions and markers under the names other programs use (vtk_cells.hpp):
+// every combination of region, marker, gmsh:physical, CellEntityIds and
+// medit:ref present, each with its own values, gives those of the first
+// name in the order of precedence; likewise ref and medit:ref.
+void test_array_names(void**) {
+    const char* what = "array names";
+    const char* const names[] = {"region", "marker", "gmsh:physical", "CellEntityIds", "medit:ref"};
+    const char* const values[] = {"1 2 -1 -1 -1", "-1 -1 101 102 -1", "11 12 111 112 0", "21 22 121 122 0",
+                                  "31 32 131 132 0"};
+    const size_t cells_begin = kAscii.find("<CellData>"), cells_end = kAscii.find("</CellData>");
+    int failed = 0;
+    for (int mask = 0; mask < 32; ++mask)
+        for (int point_mask = 1; point_mask < 4; ++point_mask) {
+            std::string cell_data = "<CellData>";
+            int region = -1, marker = -1;
+            for (int k = 0; k < 5; ++k) {
+                if (!(mask >> k & 1)) continue;
+                cell_data += std::string("<DataArray type=\"Int64\" Name=\"") + names[k] + "\" format=\"ascii\">" +
+                             values[k] + "</DataArray>";
+                if (k != 1 && region < 0) region = k;
+                if (k != 0 && marker < 0) marker = k;
+            }
+            std::string s = kAscii.substr(0, cells_begin) + cell_data + kAscii.substr(cells_end);
+            if (point_mask & 2)
+                s = replace(what, s, "<DataArray type=\"UInt8\" Name=\"corner\"",
+                            "<DataArray type=\"Int8\" Name=\"medit:ref\" format=\"ascii\">9 9 9 9 9</DataArray>"
+                            "<DataArray type=\"UInt8\" Name=\"corner\"");
+            if (!(point_mask & 1)) s = replace(what, s, "Name=\"ref\"", "Name=\"reference\"");
+            const std::string path = scratch("names.vtu");
+            write_text(path, s);
+            bodt::MeshData d;
+            try {
+                d = bodt::read_vtu(path);
+            } catch (const bodt::Error& e) {
+                CHECK(false, "arrays %d, point arrays %d: %s", mask, point_mask, e.what());
+                continue;
+            }
+            const int32_t r0 = region < 0 ? 0 : region == 0 ? 1 : 10 * (region - 1) + 1;
+            const std::vector<int32_t> regions = region < 0 ? std::vector<int32_t>{} : std::vector<int32_t>{r0, r0 + 1};
+            const int32_t m0 = marker < 0 ? 0 : 100 + (marker == 1 ? 1 : 10 * (marker - 1) + 1);
+            const std::vector<int32_t> refs =
+                point_mask & 1 ? std::vector<int32_t>{0, -5, 2, 0, 7} : std::vector<int32_t>{9, 9, 9, 9, 9};
+            const bool ok = d.regions == regions && d.tri_markers == std::vector<int32_t>{m0} &&
+                            d.edge_refs == std::vector<int32_t>{marker < 0 ? 0 : m0 + 1} && d.vertex_refs == refs;
+            if (!ok) {
+                ++failed;
+                std::printf("%s: arrays %d, point arrays %d: %zu regions, marker %d, edge ref %d, vertex ref %d\n", what,
+                            mask, point_mask, d.regions.size(), d.tri_markers.empty() ? -99 : d.tri_markers[0],
+                            d.edge_refs.empty() ? -99 : d.edge_refs[0], d.vertex_refs.empty() ? -99 : d.vertex_refs[0]);
+            }
+        }
+    CHECK(failed == 0, "%d of 96 combinations failed (listed above)", failed);
+    // Every array read is checked, also one that another overrides.
+    expect_malformed(what, "names_short.vtu",
+                     replace(what, kAscii, "<CellData>",
+                             "<CellData><DataArray type=\"Int32\" Name=\"medit:ref\" format=\"ascii\">1 2</DataArray>"),
+                     "the medit:ref array has 2 values for 5 cells");
+}
+
 void test_refusals(void**) {
     const char* what = "refusals";
     const std::string bin = binary_file(false, false);
-    expect_malformed(what, "appended.vtu",
-                     replace(what, bin, "</UnstructuredGrid>", "</UnstructuredGrid>\n<AppendedData encoding=\"raw\">_xx</AppendedData>"),
-                     "appended data is not supported");
-    expect_malformed(what, "appended2.vtu",
-                     replace(what, kAscii, "Name=\"types\" format=\"ascii\">10 10 5 3 1",
-                             "Name=\"types\" format=\"appended\" offset=\"0\">"),
-                     "appended data is not supported");
-    expect_malformed(what, "compressed.vtu",
-                     replace(what, bin, "byte_order=", "compressor=\"vtkZLibDataCompressor\" byte_order="),
-                     "compressed data");
+    for (const char* compressor : {"vtkLZ4DataCompressor", "vtkLZMADataCompressor"})
+        expect_malformed(what, "compressed.vtu",
+                         replace(what, bin, "byte_order=", "compressor=\"" + std::string(compressor) + "\" byte_order="),
+                         (std::string("compressor ") + compressor + " is not supported").c_str());
+    expect_malformed(what, "compressed.vtu", replace(what, bin, "byte_order=", "compressor=\"gzip\" byte_order="),
+                     "unknown compressor \"gzip\"");
     expect_malformed(what, "bigendian.vtu", replace(what, bin, "LittleEndian", "BigEndian"), "big-endian");
     const long line = expect_malformed(what, "hexahedron.vtu",
                                        replace(what, kAscii, ">10 10 5 3 1<", ">10 12 5 3 1<"), "(hexahedron)");
@@ -495,8 +513,13 @@ void test_malformed(void**) {
     line = bad("b64_garbage.vtu", garbage, "invalid character '!'");
     CHECK(line == 15, "base64 garbage on line %ld", line);
     bad("b64_truncated.vtu",
-        replace(what, bin, binary_body(std::vector<uint8_t>{10, 10, 5, 3}, false, false), "BAAAAAoKBQ"),
+        replace(what, bin, binary_body(std::vector<uint8_t>{10, 10, 5, 3}, false, false), "BAAAAAoK BQ  "),
         "truncated data");
+    bad("b64_short.vtu", replace(what, bin, binary_body(std::vector<uint8_t>{10, 10, 5, 3}, false, false), "BAAAAAoKBQ"),
+        "the header says 4 bytes of data, but at most 2 follow");
+    bad("b64_long.vtu",
+        replace(what, bin, binary_body(std::vector<uint8_t>{10, 10, 5, 3}, false, false), b64({3, 0, 0, 0, 10, 10, 5, 3})),
+        "more base64 data follows the data its header gives");
     bad("b64_header.vtu",
         replace(what, bin, binary_body(std::vector<uint8_t>{10, 10, 5, 3}, false, false),
                 b64({9, 0, 0, 0, 10, 10, 5, 3})),
@@ -722,15 +745,30 @@ void test_abaqus(void**) {
     std::sort(fixed.begin(), fixed.end());
     fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
     CHECK(inp.nsets.count("FIXED") && inp.nsets.at("FIXED") == fixed, "NSET FIXED");
-    // REF_<r>: the nodes of each nonzero vertex ref, and no other node set.
-    std::map<std::string, std::vector<long>> ref_sets;
+    // REF_<r>: the nodes of each nonzero vertex ref; MARKER_<m>_NODES: the
+    // nodes of each marker's triangles (sorted, each once); no other node set.
+    std::map<std::string, std::vector<long>> ref_sets, marker_sets;
     for (size_t v = 0; v < nv; ++v)
         if (d.vertex_refs[v] != 0) ref_sets["REF_" + abaqus_id(d.vertex_refs[v])].push_back(static_cast<long>(v) + 1);
     CHECK(ref_sets.size() >= 3 && ref_sets.count("REF_N1"), "test mesh lacks vertex refs, a negative one among them");
-    CHECK(inp.nsets.size() == ref_sets.size() + 1, "%zu node sets for %zu refs and FIXED", inp.nsets.size(),
-          ref_sets.size());
-    for (const auto& [name, nodes] : ref_sets)
-        CHECK(inp.nsets.count(name) && inp.nsets.at(name) == nodes, "NSET %s", name.c_str());
+    for (size_t f = 0; f < d.tri_markers.size(); ++f) {
+        std::vector<long>& set = marker_sets["MARKER_" + abaqus_id(d.tri_markers[f]) + "_NODES"];
+        for (int k = 0; k < 3; ++k) set.push_back(d.triangles[3 * f + k]);  // base 1 = node numbers
+    }
+    for (auto& [name, nodes] : marker_sets) {
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    }
+    CHECK(marker_sets.size() >= 3 && marker_sets.count("MARKER_N3_NODES"), "test mesh lacks markers");
+    CHECK(inp.nsets.size() == ref_sets.size() + marker_sets.size() + 2,
+          "%zu node sets for %zu refs, %zu markers, FIXED and NALL", inp.nsets.size(), ref_sets.size(),
+          marker_sets.size());
+    std::vector<long> all(nv);
+    for (size_t v = 0; v < nv; ++v) all[v] = static_cast<long>(v) + 1;
+    CHECK(inp.nsets.count("NALL") && inp.nsets.at("NALL") == all, "NSET NALL");
+    for (const auto* sets : {&ref_sets, &marker_sets})
+        for (const auto& [name, nodes] : *sets)
+            CHECK(inp.nsets.count(name) && inp.nsets.at(name) == nodes, "NSET %s", name.c_str());
     // Surfaces: each face's nodes (Abaqus C3D4 numbering) are a marked triangle.
     const int face_nodes[4][3] = {{1, 2, 3}, {1, 4, 2}, {2, 4, 3}, {3, 4, 1}};
     std::map<int32_t, std::set<Tri>> marked;
@@ -790,6 +828,7 @@ int main(int argc, char** argv) {
     const CMUnitTest tests[] = {
         cmocka_unit_test(test_round_trip),
         cmocka_unit_test(test_hand_written),
+        cmocka_unit_test(test_array_names),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_malformed),
         cmocka_unit_test(test_abaqus),

@@ -1,7 +1,8 @@
 // Abaqus / CalculiX .inp writer: see abaqus.hpp.  Besides NSET FIXED, one
 // node set REF_<r> per nonzero vertex ref r (REF_N<r> for a negative one):
 // the nodes a boundary condition given on the Medit / TetGen vertex refs
-// applies to.  Ref 0 means "no ref" and gets no set.
+// applies to.  Ref 0 means "no ref" and gets no set.  Per face marker, a
+// node set besides the surface: *BOUNDARY takes nodes, *DSLOAD faces.
 #include "io/abaqus.hpp"
 
 #include "io/output_file.hpp"
@@ -145,6 +146,7 @@ void write_abaqus(const std::string& path, const MeshData& d) {
         if (nt > 0) std::fprintf(o, "*ELSET, ELSET=ALL, GENERATE\n1, %zu, 1\n", nt);
     }
 
+    if (nv > 0) std::fprintf(o, "*NSET, NSET=NALL, GENERATE\n1, %zu, 1\n", nv);
     if (!d.fixed.empty()) {
         std::vector<int64_t> ids;
         for (int32_t v : d.fixed) ids.push_back(node(v));
@@ -162,9 +164,19 @@ void write_abaqus(const std::string& path, const MeshData& d) {
         write_list(o, ids);
     }
 
-    // Per marker, per face number: the elements (sorted, each once).
+    // Per marker, its nodes, and per face number its elements (sorted, each once).
+    std::map<int32_t, std::vector<int64_t>> marker_nodes;
     std::map<int32_t, std::array<std::vector<int64_t>, 4>> surfaces;
-    for (size_t f = 0; f < nf; ++f) surfaces[d.tri_markers[f]][face_side[f]].push_back(face_elem[f]);
+    for (size_t f = 0; f < nf; ++f) {
+        for (int k = 0; k < 3; ++k) marker_nodes[d.tri_markers[f]].push_back(node(d.triangles[3 * f + k]));
+        surfaces[d.tri_markers[f]][face_side[f]].push_back(face_elem[f]);
+    }
+    for (auto& [m, ids] : marker_nodes) {
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        std::fprintf(o, "*NSET, NSET=MARKER_%s_NODES\n", id_name(m).c_str());
+        write_list(o, ids);
+    }
     for (auto& [m, sides] : surfaces) {
         const std::string name = "MARKER_" + id_name(m);
         for (int k = 0; k < 4; ++k) {

@@ -13,12 +13,26 @@
 //                                       increasing order; element t+1 = tet t
 //                                       (without regions: one block, ELSET=ALL)
 //   *ELSET, ELSET=ALL, GENERATE         every element (with regions)
+//   *NSET, NSET=NALL, GENERATE          every node (CalculiX's usual name,
+//                                       e.g. for *NODE PRINT, NSET=NALL)
 //   *NSET, NSET=FIXED                   the fixed vertices, if any
 //   *NSET, NSET=REF_<r>                 per non-zero vertex ref r, its nodes
 //                                       (REF_N<r> for a negative r)
+//   *NSET, NSET=MARKER_<m>_NODES        per face marker m, the nodes of its
+//                                       triangles (for *BOUNDARY; marker 0:
+//                                       the faces the mesh marks 0, such as
+//                                       region interfaces)
 //   *ELSET, ELSET=MARKER_<m>_S<k>       per face marker m and C3D4 face k: the
 //   *SURFACE, TYPE=ELEMENT, NAME=MARKER_<m>   elements whose face k is marked m;
-//     MARKER_<m>_S<k>, S<k>             the surface lists those sets
+//     MARKER_<m>_S<k>, S<k>             the surface lists those sets (for
+//                                       *DSLOAD, *DFLUX, *FILM ...)
+//
+// So a CalculiX or Abaqus job can *INCLUDE the file and use the names:
+//   *SOLID SECTION, ELSET=REGION_1, MATERIAL=STEEL   (or ELSET=ALL)
+//   *BOUNDARY
+//   MARKER_1_NODES, 1, 3
+//   *DSLOAD
+//   MARKER_2, P, 1.0
 //
 // C3D4 faces: S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1.  A marked
 // triangle on an interface between two tets goes on the face of the tet

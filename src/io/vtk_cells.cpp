@@ -38,7 +38,49 @@ const char* vtk_cell_type_name(int64_t type) {
     }
 }
 
+namespace {
+
+// The arrays read for each kind of data, in order of precedence.
+const char* const kRegionArrays[] = {"region", "gmsh:physical", "CellEntityIds", "medit:ref"};
+const char* const kMarkerArrays[] = {"marker", "gmsh:physical", "CellEntityIds", "medit:ref"};
+const char* const kRefArrays[] = {"ref", "medit:ref"};
+const char* const kFixedArrays[] = {"fixed"};
+const char* const kCornerArrays[] = {"corner"};
+
+template <size_t N>
+bool listed(const char* const (&names)[N], const std::string& name) {
+    for (const char* n : names)
+        if (name == n) return true;
+    return false;
+}
+
+// The first of `names` that `arrays` has, or an empty array.
+template <size_t N>
+std::vector<int64_t> first_of(const std::map<std::string, std::vector<int64_t>>& arrays,
+                              const char* const (&names)[N]) {
+    for (const char* n : names) {
+        const auto it = arrays.find(n);
+        if (it != arrays.end()) return it->second;
+    }
+    return {};
+}
+
+}  // namespace
+
+bool vtk_reads_cell_array(const std::string& name) {
+    return listed(kRegionArrays, name) || listed(kMarkerArrays, name);
+}
+
+bool vtk_reads_point_array(const std::string& name) {
+    return listed(kFixedArrays, name) || listed(kCornerArrays, name) || listed(kRefArrays, name);
+}
+
 MeshData mesh_from_vtk(VtkGrid g, const VtkFail& fail) {
+    const std::vector<int64_t> region = first_of(g.cell_arrays, kRegionArrays);
+    const std::vector<int64_t> marker = first_of(g.cell_arrays, kMarkerArrays);
+    const std::vector<int64_t> ref = first_of(g.point_arrays, kRefArrays);
+    const std::vector<int64_t> fixed = first_of(g.point_arrays, kFixedArrays);
+    const std::vector<int64_t> corner = first_of(g.point_arrays, kCornerArrays);
     const int64_t ncells = static_cast<int64_t>(g.types.size());
     const int64_t nconn = static_cast<int64_t>(g.connectivity.size());
     if (static_cast<int64_t>(g.offsets.size()) != ncells)
@@ -91,23 +133,23 @@ MeshData mesh_from_vtk(VtkGrid g, const VtkFail& fail) {
         const int64_t* v = g.connectivity.data() + start;
         if (t == kVtkTetra) {
             for (int k = 0; k < 4; ++k) d.tets.push_back(static_cast<int32_t>(v[k]));
-            if (!g.region.empty()) d.regions.push_back(static_cast<int32_t>(g.region[c]));
+            if (!region.empty()) d.regions.push_back(static_cast<int32_t>(region[c]));
         } else if (t == kVtkTriangle) {
             for (int k = 0; k < 3; ++k) d.triangles.push_back(static_cast<int32_t>(v[k]));
-            d.tri_markers.push_back(g.marker.empty() ? 0 : static_cast<int32_t>(g.marker[c]));
+            d.tri_markers.push_back(marker.empty() ? 0 : static_cast<int32_t>(marker[c]));
         } else if (t == kVtkLine) {
             d.feature_edges.push_back(static_cast<int32_t>(v[0]));
             d.feature_edges.push_back(static_cast<int32_t>(v[1]));
-            d.edge_refs.push_back(g.marker.empty() ? 0 : static_cast<int32_t>(g.marker[c]));
+            d.edge_refs.push_back(marker.empty() ? 0 : static_cast<int32_t>(marker[c]));
         }
     }
     if (d.tets.empty()) fail(VtkPart::Grid, "the file has no tetrahedra (VTK_TETRA cells)");
     if (d.tets.size() / 4 > static_cast<size_t>(INT32_MAX)) fail(VtkPart::Grid, "more than 2^31 - 1 tets");
-    for (size_t k = 0; k < g.fixed.size(); ++k)
-        if (g.fixed[k] != 0) d.fixed.push_back(static_cast<int32_t>(k));
-    for (size_t k = 0; k < g.corner.size(); ++k)
-        if (g.corner[k] != 0) d.corners.push_back(static_cast<int32_t>(k));
-    d.vertex_refs.assign(g.ref.begin(), g.ref.end());  // each checked to fit in 32 bits
+    for (size_t k = 0; k < fixed.size(); ++k)
+        if (fixed[k] != 0) d.fixed.push_back(static_cast<int32_t>(k));
+    for (size_t k = 0; k < corner.size(); ++k)
+        if (corner[k] != 0) d.corners.push_back(static_cast<int32_t>(k));
+    d.vertex_refs.assign(ref.begin(), ref.end());  // each checked to fit in 32 bits
     return d;
 }
 

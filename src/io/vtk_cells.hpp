@@ -12,12 +12,22 @@
 //
 // The reader tells the cells apart by their type, never by the -1 / NaN
 // fillers, so any marker or region value (also -1) round-trips.
+//
+// Readers also take the arrays other programs write for the same data:
+// meshio's gmsh:physical (Gmsh's physical groups) and medit:ref (Medit's
+// refs), and VTK's CellEntityIds, each one array for the cells of every type.
+// When a file has several, the first present in this order is used:
+//   regions of tets           region, gmsh:physical, CellEntityIds, medit:ref
+//   markers of triangles and
+//   refs of lines             marker, gmsh:physical, CellEntityIds, medit:ref
+//   vertex refs (point data)  ref, medit:ref
 #pragma once
 
 #include "io/mesh_io.hpp"
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -28,16 +38,21 @@ inline constexpr uint8_t kVtkVertex = 1, kVtkLine = 3, kVtkTriangle = 5, kVtkTet
 // "tetra", "hexahedron", ...; nullptr for a type VTK does not have.
 const char* vtk_cell_type_name(int64_t type);
 
-// A grid as read from a file, every index 0-based.  The optional arrays are
-// empty when the file has none, else one value per cell (region, marker) or
-// per point (fixed, corner, ref), checked by the reader to fit in 32 bits.
+// The names of the integer cell / point arrays that readers take (the table
+// above, and fixed and corner).
+bool vtk_reads_cell_array(const std::string& name);
+bool vtk_reads_point_array(const std::string& name);
+
+// A grid as read from a file, every index 0-based.
 struct VtkGrid {
     int64_t points = 0;
     std::vector<double> xyz;           // 3 per point, finite
     std::vector<int64_t> offsets;      // one per cell: where its vertices end in `connectivity`
     std::vector<int64_t> connectivity;
     std::vector<int64_t> types;        // one per cell
-    std::vector<int64_t> region, marker, fixed, corner, ref;
+    // The arrays the file has of those the readers take, by name: one value
+    // per cell or per point, checked by the reader to fit in 32 bits.
+    std::map<std::string, std::vector<int64_t>> cell_arrays, point_arrays;
 };
 
 // Which part of the grid a problem is in, for the reader to say where.
@@ -45,7 +60,7 @@ enum class VtkPart { Offsets, Connectivity, Types, Grid };
 // Must throw (the reader's Error with its file position).
 using VtkFail = std::function<void(VtkPart, const std::string&)>;
 
-// MeshData (base 0) from the grid, as the table above says: offsets
+// MeshData (base 0) from the grid, as the tables above say: offsets
 // increasing and within the connectivity, every index a point, cells of a
 // supported type with their number of points, at least one tet.
 MeshData mesh_from_vtk(VtkGrid grid, const VtkFail& fail);

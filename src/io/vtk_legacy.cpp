@@ -311,15 +311,7 @@ private:
 
 // The arrays of vtk_cells.hpp that a section (point or cell data) carries.
 bool carries(bool cell_data, const std::string& name) {
-    return cell_data ? name == "region" || name == "marker" : name == "fixed" || name == "corner" || name == "ref";
-}
-
-std::vector<int64_t>* slot(VtkGrid& g, const std::string& name) {
-    if (name == "region") return &g.region;
-    if (name == "marker") return &g.marker;
-    if (name == "fixed") return &g.fixed;
-    if (name == "corner") return &g.corner;
-    return &g.ref;
+    return cell_data ? vtk_reads_cell_array(name) : vtk_reads_point_array(name);
 }
 
 }  // namespace
@@ -353,17 +345,16 @@ MeshData read_vtk(const std::string& path) {
     enum class Section { Dataset, PointData, CellData } section = Section::Dataset;
     int64_t section_count = 0, point_data = -1, cell_data = -1;
     int64_t ncells = 0;
-    std::vector<std::string> seen;  // our arrays in the current section
 
     // Reads or skips `components` x section_count values of an attribute.
     auto attribute = [&](const std::string& name, int64_t components, const ValueType& type, const char* what) {
         const bool ours = section != Section::Dataset && carries(section == Section::CellData, name);
         if (!ours) return s.skip(s.times(components, section_count), type, what);
         if (components != 1) s.fail("the " + name + " array must have 1 component");
-        if (std::find(seen.begin(), seen.end(), name) != seen.end())
+        auto& arrays = section == Section::CellData ? g.cell_arrays : g.point_arrays;
+        if (arrays.count(name))
             s.fail("a second " + name + " array in " + (section == Section::CellData ? "CELL_DATA" : "POINT_DATA"));
-        seen.push_back(name);
-        std::vector<int64_t>& out = *slot(g, name);
+        std::vector<int64_t>& out = arrays[name];
         const LegacyScanner::Place at = s.place();
         for (const double v : s.reals(s.times(components, section_count), type, what)) {
             if (!(v == std::floor(v) && v >= INT32_MIN && v <= INT32_MAX))
@@ -451,7 +442,6 @@ MeshData read_vtk(const std::string& path) {
             count = s.count("the number of values");
             section = cells ? Section::CellData : Section::PointData;
             section_count = count;
-            seen.clear();
         } else if (is("field")) {
             s.expect("the field name");
             const int64_t arrays = s.count("the number of arrays");

@@ -18,12 +18,14 @@
 //     version (before 5: the count, then the indices, per cell; 5 and later:
 //     OFFSETS and CONNECTIVITY arrays); CELL_TYPES; cells as vtk_cells.hpp
 //     says (tets, triangles, lines, vertices ignored, the rest refused);
-//   - in CELL_DATA and POINT_DATA, arrays named region, marker (cells),
-//     fixed, corner, ref (points), given as SCALARS (with LOOKUP_TABLE, as
-//     VTK requires) or as FIELD arrays, of one component, of any numeric
-//     type whose values are whole numbers that fit in 32 bits (Mesquite
-//     writes its `fixed` flags as float; its `fixed` is the vertices its
-//     smoother must not move, the meaning of fixed here);
+//   - in CELL_DATA and POINT_DATA, the arrays of vtk_cells.hpp (region,
+//     marker, gmsh:physical, CellEntityIds, medit:ref of the cells; fixed,
+//     corner, ref, medit:ref of the points), given as SCALARS (with
+//     LOOKUP_TABLE, as VTK requires) or as FIELD arrays (meshio), of one
+//     component, of any numeric type whose values are whole numbers that
+//     fit in 32 bits (Mesquite writes its `fixed` flags as float; its
+//     `fixed` is the vertices its smoother must not move, the meaning of
+//     fixed here);
 //   - every other attribute (SCALARS, VECTORS, NORMALS, TENSORS, TENSORS6,
 //     TEXTURE_COORDINATES, COLOR_SCALARS, LOOKUP_TABLE, GLOBAL_IDS,
 //     PEDIGREE_IDS, EDGE_FLAGS, FIELD arrays) is skipped, as are FIELD data

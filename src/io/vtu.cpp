@@ -1,8 +1,9 @@
 // VTK XML UnstructuredGrid (.vtu): see vtu.hpp for what is written and read.
 //
 // The reader parses the whole file with a small XML tokenizer (elements,
-// attributes, text, comments, CDATA; entity references decoded; no DOCTYPE)
-// into a flat element tree, then reads the few arrays it needs.  Nothing is
+// attributes, text, comments, CDATA; entity references decoded; no DOCTYPE;
+// raw appended data kept as bytes) into a flat element tree, then reads the
+// few arrays it needs (their binary data: vtu_binary.cpp).  Nothing is
 // allocated from a count in the file: arrays are decoded from the data
 // actually present and only then compared with NumberOfPoints / Cells.
 #include "io/vtu.hpp"
@@ -10,6 +11,7 @@
 #include "io/output_file.hpp"
 #include "io/text_scanner.hpp"
 #include "io/vtk_cells.hpp"
+#include "io/vtu_binary.hpp"
 
 #include "bodt.h"
 #include "common/error.hpp"
@@ -20,6 +22,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -41,6 +44,10 @@ struct XmlElement {
         bool cdata;
     };
     std::vector<Range> text;
+    // Raw appended data (<AppendedData encoding="raw">): the bytes after
+    // its '_', [raw_begin, raw_end) of the file, never parsed as XML.
+    bool raw = false;
+    size_t raw_begin = 0, raw_end = 0;
 
     const std::string* attr(const char* key) const {
         for (const auto& [k, v] : attrs)
@@ -147,6 +154,25 @@ private:
         p = q + std::strlen(end);
     }
 
+    // Raw appended data may hold any byte, '<' too, so it is not parsed: it
+    // starts after a '_' (after optional whitespace) and ends at the last
+    // </AppendedData> of the file, where VTK and meshio end it.  Without an
+    // encoding attribute appended data is raw, as in VTK.
+    void skip_raw_data(XmlElement& e, size_t& p) const {
+        const std::string* encoding = e.attr("encoding");
+        if (encoding && *encoding != "raw") return;
+        size_t q = p;
+        skip_space(q);
+        if (q >= buf_.size() || buf_[q] != '_') fail_at(q, "raw appended data must start with '_'");
+        const size_t end = buf_.rfind("</AppendedData>");
+        if (end == std::string::npos || end <= q)
+            fail_at(e.offset, "unexpected end of file: raw <AppendedData> without </AppendedData>");
+        e.raw = true;
+        e.raw_begin = q + 1;
+        e.raw_end = end;
+        p = end;
+    }
+
     void parse() {
         size_t p = 0;
         if (starts(0, "\xEF\xBB\xBF")) p = 3;  // UTF-8 byte order mark
@@ -240,6 +266,7 @@ private:
                 elems_.push_back(std::move(e));
                 have_root = true;
                 if (!self_closing) open.push_back(index);
+                if (!self_closing && elems_[index].name == "AppendedData") skip_raw_data(elems_[index], p);
             }
         }
         if (!open.empty()) {
@@ -260,18 +287,21 @@ private:
 // remembers where each range starts, for line numbers.
 struct ElementText {
     std::string owned;
-    std::string_view text;
+    std::string_view view;                           // of the file, unless decoded
     std::vector<std::pair<size_t, size_t>> pieces;  // (start in text, offset in the file)
-    bool decoded = false;                            // text is `owned`
+    bool decoded = false;                            // the text is `owned`
 
-    // The file line of text[pos].
+    // Safe to copy and move (no view into `owned` is kept).
+    std::string_view text() const { return decoded ? std::string_view(owned) : view; }
+
+    // The file line of text()[pos].
     int64_t line_of(const XmlDocument& doc, size_t pos) const {
         size_t k = 0;
         while (k + 1 < pieces.size() && pieces[k + 1].first <= pos) ++k;
         if (!decoded) return doc.line_at(pieces[k].second + (pos - pieces[k].first));
         return doc.line_at(pieces[k].second) +
-               std::count(text.begin() + static_cast<std::ptrdiff_t>(pieces[k].first),
-                          text.begin() + static_cast<std::ptrdiff_t>(std::min(pos, text.size())), '\n');
+               std::count(owned.begin() + static_cast<std::ptrdiff_t>(pieces[k].first),
+                          owned.begin() + static_cast<std::ptrdiff_t>(std::min(pos, owned.size())), '\n');
     }
 };
 
@@ -287,7 +317,7 @@ ElementText element_text(const XmlDocument& doc, const XmlElement& e) {
         if (r.cdata || std::find(buf.begin() + static_cast<std::ptrdiff_t>(r.begin),
                                  buf.begin() + static_cast<std::ptrdiff_t>(r.end), '&') ==
                            buf.begin() + static_cast<std::ptrdiff_t>(r.end)) {
-            t.text = std::string_view(buf).substr(r.begin, r.end - r.begin);
+            t.view = std::string_view(buf).substr(r.begin, r.end - r.begin);
             t.pieces.emplace_back(0, r.begin);
             return t;
         }
@@ -297,7 +327,6 @@ ElementText element_text(const XmlDocument& doc, const XmlElement& e) {
         if (r.cdata) t.owned.append(buf, r.begin, r.end - r.begin);
         else doc.decode_entities(r.begin, r.end, t.owned);
     }
-    t.text = t.owned;
     t.decoded = true;
     return t;
 }
@@ -346,50 +375,15 @@ struct Array {
     size_t size() const { return is_float(type) ? f.size() : i.size(); }
 };
 
-// Base64 decoding of a whole text, whitespace ignored; padding may end any
-// 4-character group, so header and data encoded separately (VTK, meshio)
-// decode as well as together.
-std::vector<uint8_t> decode_base64(const XmlDocument& doc, const XmlElement& e, const ElementText& t) {
-    const std::string* name = e.attr("Name");
-    const std::string of = " in the base64 data of DataArray " + (name ? *name : std::string("(no Name)"));
-    auto fail = [&](size_t pos, const std::string& message) { doc.fail_line(t.line_of(doc, pos), message + of); };
-    std::vector<uint8_t> out;
-    out.reserve(t.text.size() / 4 * 3 + 3);
-    uint32_t group = 0;
-    int n = 0, pad = 0;
-    size_t group_start = 0;
-    for (size_t p = 0; p < t.text.size(); ++p) {
-        const char c = t.text[p];
-        if (c == ' ' || c == '\t' || c == '\n' || c == '\r') continue;
-        int v = 0;
-        if (c >= 'A' && c <= 'Z') v = c - 'A';
-        else if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
-        else if (c >= '0' && c <= '9') v = c - '0' + 52;
-        else if (c == '+') v = 62;
-        else if (c == '/') v = 63;
-        else if (c == '=') v = -1;
-        else fail(p, std::string("invalid character '") + c + "'");
-        if (n == 0) group_start = p;
-        if (v < 0) {
-            if (n < 2) fail(p, "misplaced '='");
-            ++pad;
-            v = 0;
-        } else if (pad > 0) {
-            fail(p, "data after '=' within a group of 4");
-        }
-        group = (group << 6) | static_cast<uint32_t>(v);
-        if (++n == 4) {
-            out.push_back(static_cast<uint8_t>(group >> 16));
-            if (pad < 2) out.push_back(static_cast<uint8_t>(group >> 8));
-            if (pad < 1) out.push_back(static_cast<uint8_t>(group));
-            n = 0;
-            pad = 0;
-            group = 0;
-        }
-    }
-    if (n != 0) fail(group_start, "truncated data (the length is not a multiple of 4)");
-    return out;
-}
+// How the file stores binary arrays: its header_type and compressor, and
+// its appended data, if any (the bytes or base64 text after the '_').
+struct BinaryLayout {
+    int header_size = 4;
+    VtkCompressor compressor = VtkCompressor::None;
+    const XmlElement* appended = nullptr;
+    bool appended_raw = false;
+    std::string_view appended_data;
+};
 
 uint64_t load_le(const uint8_t* p, int size) {
     uint64_t v = 0;
@@ -397,8 +391,45 @@ uint64_t load_le(const uint8_t* p, int size) {
     return v;
 }
 
-// Decodes the DataArray `e` of `type`; `header64` is the binary header size.
-Array decode_array(const XmlDocument& doc, const XmlElement& e, bool header64) {
+// The data bytes of the binary or appended DataArray `e`.
+std::vector<uint8_t> binary_bytes(const XmlDocument& doc, const XmlElement& e, const std::string& label,
+                                  bool appended, const BinaryLayout& layout) {
+    auto fail = [&](const std::string& message) { doc.fail(e, label + ": " + message); };
+    if (!appended) {
+        const ElementText t = element_text(doc, e);
+        VtuBase64Bytes in(t.text(), [&](size_t pos, const std::string& message) {
+            doc.fail_line(t.line_of(doc, pos), message + " in the base64 data of " + label);
+        });
+        std::vector<uint8_t> bytes = read_vtu_array_bytes(in, layout.header_size, layout.compressor, fail);
+        if (!in.at_end()) fail("more base64 data follows the data its header gives");
+        return bytes;
+    }
+    if (!layout.appended) doc.fail(e, label + " is appended, but the file has no <AppendedData>");
+    const std::string* off = e.attr("offset");
+    if (!off) doc.fail(e, label + " is appended but has no offset");
+    uint64_t offset = 0;
+    const auto [ptr, ec] = std::from_chars(off->data(), off->data() + off->size(), offset);
+    if (ec != std::errc() || ptr != off->data() + off->size())
+        doc.fail(e, label + ": offset '" + *off + "' is not a non-negative integer");
+    const std::string_view data = layout.appended_data;
+    if (offset > data.size())
+        doc.fail(e, label + ": offset " + *off + " is beyond the " + std::to_string(data.size()) +
+                        (layout.appended_raw ? " bytes" : " characters") + " of appended data");
+    const std::string where = label + ": appended data at offset " + *off;
+    auto fail_at = [&](size_t pos, const std::string& message) {
+        doc.fail(e, where + (pos ? " + " + std::to_string(pos) : std::string()) + ": " + message);
+    };
+    auto fail_appended = [&](const std::string& message) { doc.fail(e, where + ": " + message); };
+    if (layout.appended_raw) {
+        VtuRawBytes in(reinterpret_cast<const uint8_t*>(data.data()) + offset, data.size() - offset, fail_at);
+        return read_vtu_array_bytes(in, layout.header_size, layout.compressor, fail_appended);
+    }
+    VtuBase64Bytes in(data.substr(offset), fail_at);
+    return read_vtu_array_bytes(in, layout.header_size, layout.compressor, fail_appended);
+}
+
+// Decodes the DataArray `e`, stored as `layout` says when binary.
+Array decode_array(const XmlDocument& doc, const XmlElement& e, const BinaryLayout& layout) {
     Array a;
     a.elem = &e;
     const std::string* name = e.attr("Name");
@@ -420,17 +451,15 @@ Array decode_array(const XmlDocument& doc, const XmlElement& e, bool header64) {
     }
     const std::string* format = e.attr("format");
     if (!format) doc.fail(e, label + " has no format");
-    if (*format == "appended")
-        doc.fail(e, label + ": appended data is not supported; write the file with inline data "
-                            "(ParaView: Data Mode Ascii or Binary, not Appended)");
-    if (e.attr("offset")) doc.fail(e, label + ": appended data (offset=) is not supported");
-    if (!e.children.empty()) doc.fail(doc.element(e.children[0]), label + " contains an element");
-    const ElementText t = element_text(doc, e);
-
+    // VTK 9 puts the norm range of points in InformationKey elements.
+    for (size_t c : e.children)
+        if (doc.element(c).name != "InformationKey")
+            doc.fail(doc.element(c), label + " contains an element <" + doc.element(c).name + ">");
     if (*format == "ascii") {
+        const ElementText t = element_text(doc, e);
         int64_t lo = 0, hi = 0;
         if (!is_float(a.type)) int_range(a.type, lo, hi);
-        const std::string_view s = t.text;
+        const std::string_view s = t.text();
         size_t p = 0;
         for (;;) {
             while (p < s.size() && (s[p] == ' ' || s[p] == '\t' || s[p] == '\n' || s[p] == '\r')) ++p;
@@ -456,20 +485,12 @@ Array decode_array(const XmlDocument& doc, const XmlElement& e, bool header64) {
                 a.i.push_back(v);
             }
         }
-    } else if (*format == "binary") {
-        const std::vector<uint8_t> bytes = decode_base64(doc, e, t);
-        const int hsize = header64 ? 8 : 4;
-        if (bytes.size() < static_cast<size_t>(hsize))
-            doc.fail(e, label + ": the binary data is shorter than its " + std::to_string(hsize) + "-byte header");
-        const uint64_t declared = load_le(bytes.data(), hsize);
-        const uint64_t present = bytes.size() - static_cast<size_t>(hsize);
-        if (declared != present)
-            doc.fail(e, label + ": the header says " + std::to_string(declared) + " bytes of data, the base64 holds " +
-                            std::to_string(present));
-        if (present % static_cast<uint64_t>(info->size) != 0)
-            doc.fail(e, label + ": " + std::to_string(present) + " bytes is not a whole number of " + info->name);
-        const size_t count = static_cast<size_t>(present / static_cast<uint64_t>(info->size));
-        const uint8_t* data = bytes.data() + hsize;
+    } else if (*format == "binary" || *format == "appended") {
+        const std::vector<uint8_t> bytes = binary_bytes(doc, e, label, *format == "appended", layout);
+        if (bytes.size() % static_cast<size_t>(info->size) != 0)
+            doc.fail(e, label + ": " + std::to_string(bytes.size()) + " bytes is not a whole number of " + info->name);
+        const size_t count = bytes.size() / static_cast<size_t>(info->size);
+        const uint8_t* data = bytes.data();
         if (is_float(a.type)) {
             a.f.resize(count);
             for (size_t k = 0; k < count; ++k) {
@@ -629,24 +650,51 @@ MeshData read_vtu(const std::string& path) {
         if (*order == "BigEndian") doc.fail(root, "big-endian files are not supported (byte_order=\"BigEndian\")");
         if (*order != "LittleEndian") doc.fail(root, "unknown byte_order \"" + *order + "\"");
     }
-    bool header64 = false;
+    BinaryLayout layout;
     if (const std::string* h = root.attr("header_type")) {
-        if (*h == "UInt64") header64 = true;
+        if (*h == "UInt64") layout.header_size = 8;
         else if (*h != "UInt32") doc.fail(root, "unsupported header_type \"" + *h + "\" (UInt32 or UInt64)");
     }
-    if (const std::string* c = root.attr("compressor"); c && !c->empty())
-        doc.fail(root, "compressed data (compressor=\"" + *c +
-                           "\") is not supported; write the file without compression");
+    if (const std::string* c = root.attr("compressor"); c && !c->empty()) {
+        if (*c == "vtkZLibDataCompressor") layout.compressor = VtkCompressor::ZLib;
+        else if (*c == "vtkLZ4DataCompressor" || *c == "vtkLZMADataCompressor")
+            doc.fail(root, "compressor " + *c +
+                               " is not supported, only vtkZLibDataCompressor; write the file with zlib or without "
+                               "compression (ParaView: Compressor Type ZLib or None; meshio: compression=\"zlib\")");
+        else doc.fail(root, "unknown compressor \"" + *c + "\" (vtkZLibDataCompressor is read)");
+    }
 
     const XmlElement* grid = nullptr;
     for (size_t c : root.children) {
         const XmlElement& e = doc.element(c);
-        if (e.name == "AppendedData")
-            doc.fail(e, "appended data is not supported; write the file with inline data "
-                        "(ParaView: Data Mode Ascii or Binary, not Appended)");
+        if (e.name == "AppendedData") {
+            if (layout.appended) doc.fail(e, "a second <AppendedData>");
+            layout.appended = &e;
+        }
         if (e.name == "UnstructuredGrid") {
             if (grid) doc.fail(e, "a second <UnstructuredGrid>");
             grid = &e;
+        }
+    }
+    // The appended data starts after a '_'; offsets count from there.  Kept
+    // alive for the arrays that point into it.
+    ElementText appended_text;
+    if (const XmlElement* a = layout.appended) {
+        const std::string* encoding = a->attr("encoding");
+        if (!encoding || *encoding == "raw") {
+            layout.appended_raw = true;  // a self-closing <AppendedData/> holds no bytes
+            if (a->raw)
+                layout.appended_data = std::string_view(doc.buffer()).substr(a->raw_begin, a->raw_end - a->raw_begin);
+        } else if (*encoding == "base64") {
+            appended_text = element_text(doc, *a);
+            const std::string_view t = appended_text.text();
+            const size_t underscore = t.find_first_not_of(" \t\r\n");
+            if (underscore == std::string_view::npos || t[underscore] != '_')
+                doc.fail(*a, "the appended data does not start with '_'");
+            layout.appended_data = t.substr(underscore + 1);
+        } else {
+            doc.fail(*a, "unknown encoding \"" + (encoding ? *encoding : std::string()) +
+                             "\" of the appended data (raw or base64)");
         }
     }
     if (!grid) doc.fail(root, "no <UnstructuredGrid> element");
@@ -699,7 +747,7 @@ MeshData read_vtu(const std::string& path) {
     // Points.
     const XmlElement* pe = find_array(*points, nullptr);
     if (!pe) doc.fail(*points, "<Points> has no DataArray");
-    const Array pts = decode_array(doc, *pe, header64);
+    const Array pts = decode_array(doc, *pe, layout);
     if (!is_float(pts.type)) doc.fail(*pe, "the points must be Float32 or Float64");
     if (pts.components != 3) doc.fail(*pe, "the points must have 3 components");
     if (static_cast<int64_t>(pts.f.size()) != 3 * npoints)
@@ -718,7 +766,7 @@ MeshData read_vtu(const std::string& path) {
     auto cell_array = [&](const char* name) {
         const XmlElement* e = find_array(*cells, name);
         if (!e) doc.fail(*cells, std::string("<Cells> has no DataArray ") + name);
-        Array a = decode_array(doc, *e, header64);
+        Array a = decode_array(doc, *e, layout);
         if (is_float(a.type)) doc.fail(*e, std::string("the ") + name + " must be integers");
         if (a.components != 1) doc.fail(*e, std::string("the ") + name + " must have 1 component");
         return a;
@@ -732,29 +780,32 @@ MeshData read_vtu(const std::string& path) {
     if (static_cast<int64_t>(offsets.i.size()) != ncells)
         doc.fail(*offsets.elem, "NumberOfCells is " + std::to_string(ncells) + " but there are " +
                                     std::to_string(offsets.i.size()) + " offsets");
-    // Optional integer cell / point arrays.
-    auto optional_ints = [&](const XmlElement* parent, const char* name, int64_t count, const char* what) {
-        std::vector<int64_t> values;
-        if (!parent) return values;
-        const XmlElement* e = find_array(*parent, name);
-        if (!e) return values;
-        Array a = decode_array(doc, *e, header64);
-        if (is_float(a.type)) doc.fail(*e, std::string("the ") + name + " array must be of an integer type");
-        if (a.components != 1) doc.fail(*e, std::string("the ") + name + " array must have 1 component");
+    // The integer cell / point arrays read by name (vtk_cells.hpp).
+    auto int_array = [&](const XmlElement& e, const std::string& name, int64_t count, const char* what) {
+        Array a = decode_array(doc, e, layout);
+        if (is_float(a.type)) doc.fail(e, "the " + name + " array must be of an integer type");
+        if (a.components != 1) doc.fail(e, "the " + name + " array must have 1 component");
         if (static_cast<int64_t>(a.i.size()) != count)
-            doc.fail(*e, std::string("the ") + name + " array has " + std::to_string(a.i.size()) +
-                             " values for " + std::to_string(count) + " " + what);
+            doc.fail(e, "the " + name + " array has " + std::to_string(a.i.size()) + " values for " +
+                            std::to_string(count) + " " + what);
         for (size_t k = 0; k < a.i.size(); ++k)
             if (a.i[k] < INT32_MIN || a.i[k] > INT32_MAX)
-                doc.fail(*e, std::string("the ") + name + " value " + std::to_string(a.i[k]) +
-                                 " does not fit in 32 bits");
+                doc.fail(e, "the " + name + " value " + std::to_string(a.i[k]) + " does not fit in 32 bits");
         return std::move(a.i);
     };
-    vtk.region = optional_ints(cell_data, "region", ncells, "cells");
-    vtk.marker = optional_ints(cell_data, "marker", ncells, "cells");
-    vtk.fixed = optional_ints(point_data, "fixed", npoints, "points");
-    vtk.corner = optional_ints(point_data, "corner", npoints, "points");
-    vtk.ref = optional_ints(point_data, "ref", npoints, "points");
+    auto read_ints = [&](const XmlElement* parent, bool (*reads)(const std::string&), int64_t count, const char* what,
+                         std::map<std::string, std::vector<int64_t>>& out) {
+        if (!parent) return;
+        for (size_t c : parent->children) {
+            const XmlElement& e = doc.element(c);
+            const std::string* n = e.attr("Name");
+            if (e.name != "DataArray" || !n || !reads(*n)) continue;
+            if (out.count(*n)) doc.fail(e, "a second DataArray " + *n);
+            out[*n] = int_array(e, *n, count, what);
+        }
+    };
+    read_ints(cell_data, vtk_reads_cell_array, ncells, "cells", vtk.cell_arrays);
+    read_ints(point_data, vtk_reads_point_array, npoints, "points", vtk.point_arrays);
     vtk.offsets = std::move(offsets.i);
     vtk.connectivity = std::move(conn.i);
     vtk.types = std::move(types.i);

@@ -10,20 +10,26 @@
 // By Type" keeps only the tets.  Binary rather than ASCII: exact for doubles
 // by construction and about half the size of %.17g text.
 //
-// The reader takes what the writer writes and what ParaView / VTK / meshio
-// write uncompressed: ASCII or inline base64 DataArrays (header UInt32 or
-// UInt64, header and data encoded together or separately), Float32 or
-// Float64 points, any integer type for cells and the region / marker /
-// fixed arrays.  Cells of type 10, 5 and 3 are read as above (triangles
-// without a marker array get marker 0), VTK_VERTEX cells are ignored;
-// anything else (hexahedra, quadratic tets, polygons ...) is refused, as are
-// appended data, compression, big-endian files, more than one Piece and a
-// file without tets.  Without a `region` array, regions stay empty; lines
-// get their edge ref from `marker` (0 without it); `ref` gives vertex_refs;
-// `fixed` and `corner` come back sorted, each vertex once.  Other arrays are ignored (tet_fields
-// are not read back).  Indices are
-// 0-based: the returned MeshData has base 0.  Every problem is an
-// Error(BODT_ERR_IO) "<path>:<line>: ...".
+// The reader takes what the writer writes and what ParaView, VTK and meshio
+// write: ASCII, inline base64 ("binary") and appended (raw or base64)
+// DataArrays, uncompressed or compressed with vtkZLibDataCompressor
+// (ParaView's and meshio's default; vtu_binary.hpp), header_type UInt32 or
+// UInt64, header and data encoded together or separately; Float32 or
+// Float64 points, any integer type for cells and for the arrays of
+// vtk_cells.hpp (region, marker, fixed, corner, ref, and meshio's and VTK's
+// gmsh:physical, medit:ref and CellEntityIds, with the precedence given
+// there); VTK's InformationKey elements in a DataArray are skipped.  Cells
+// of type 10, 5 and 3 are read as above (triangles without a marker array
+// get marker 0), VTK_VERTEX cells are ignored; anything else (hexahedra,
+// quadratic tets, polygons ...) is refused, as are the LZ4 and LZMA
+// compressors (by name), big-endian files, more than one Piece and a file
+// without tets.  Without a region array, regions stay empty; lines get
+// their edge ref from the marker array (0 without one); `fixed` and
+// `corner` come back sorted, each vertex once.  Other arrays are ignored
+// (tet_fields are not read back).  Indices are 0-based: the returned
+// MeshData has base 0.  Every problem is an Error(BODT_ERR_IO)
+// "<path>:<line>: ...", the line of the element at fault (for appended
+// data, its DataArray's, with the offset in the appended data).
 #pragma once
 
 #include "io/mesh_io.hpp"
