@@ -16,7 +16,9 @@ packages=(
   gfortran          # the Fortran module (bindings/fortran) and its tests
   python3           # tests may parse JSON with /usr/bin/python3
   python3-numpy     # the Python package (bindings/python) and its tests
-  python3-cffi      # the test that loads the installed bodt.h with cffi
+  python3-cffi      # the tests of bodt.cffi_cdef() and the README's cffi recipe
+  python3-meshio    # the tests of bodt.from_meshio / Mesh.to_meshio (meshio writes and reads the files)
+  python3-venv      # the test of `pip install ./bindings/python` (a venv, with pip from python3-pip-whl)
   abigail-tools     # abidiff: the ABI check against tests/consumers/libbodt.abi
   chromium          # renders the HTML report headless in its test (screenshot)
   clang             # clang++ for the libFuzzer targets of the readers (tests/fuzz)
