@@ -17,8 +17,9 @@ packages=(
   gfortran          # the Fortran module (bindings/fortran) and its tests
   python3           # tests may parse JSON with /usr/bin/python3
   python3-numpy     # the Python package (bindings/python) and its tests
-  python3-cffi      # the test that loads the installed bodt.h with cffi
-  python3-meshio    # interop_meshio: meshio reads our .vtu / .vtk and writes the ones we read
+  python3-cffi      # the tests of bodt.cffi_cdef() and the README's cffi recipe
+  python3-meshio    # meshio reads the files we write, writes the ones we read; bodt.from_meshio / to_meshio
+  python3-venv      # the test of `pip install ./bindings/python` (a venv, with pip from python3-pip-whl)
   calculix-ccx      # interop_calculix: CalculiX solves a bar from our .inp
   abigail-tools     # abidiff: the ABI check against tests/consumers/libbodt.abi
   chromium          # renders the HTML report headless in its test (screenshot)

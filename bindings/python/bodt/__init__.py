@@ -10,7 +10,13 @@ and parameter) with numpy arrays in and out::
         points, tets = mesh.points, mesh.tets
 
 Failed calls raise :class:`Error` subclasses carrying the library's status
-and message.
+and message.  :func:`from_meshio` and :meth:`Mesh.to_meshio` convert from
+and to meshio (which is imported only then); :func:`cffi_cdef` gives
+bodt.h's declarations to cffi, for the C API itself::
+
+    ffi = cffi.FFI()
+    ffi.cdef(bodt.cffi_cdef())
+    lib = ffi.dlopen(bodt.library_path())
 
 Finding libbodt.so: importing the package loads ``libbodt.so.<major>``,
 the first found of
@@ -23,10 +29,16 @@ the first found of
 3. the system library path (``ctypes.CDLL("libbodt.so.<major>")``:
    LD_LIBRARY_PATH, the ld.so cache).
 
+A package installed by pip (``pip install ./bindings/python``) has no
+``_paths.py``: it finds the library by 1 or 3 (after ``cmake --install``
+into /usr/local and ``ldconfig``, the ld.so cache has it).
+
 The library's major version must be the package's, else ImportError.
 """
 
+from ._cdef import cffi_cdef
 from ._library import library_path, library_version
+from ._meshio import from_meshio
 from ._version import __version__
 from .enums import (
     OPS_MODE_DEFAULT,
@@ -96,7 +108,9 @@ __all__ = [
     "VertexParents",
     "WrongStateError",
     "__version__",
+    "cffi_cdef",
     "dihedral_bin_edges",
+    "from_meshio",
     "library_path",
     "library_version",
 ]

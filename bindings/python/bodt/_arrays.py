@@ -9,9 +9,12 @@ import ctypes
 import operator
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, DTypeLike
 
-__all__ = ["float_array", "index_array", "int32", "pointer"]
+__all__ = ["INT_DTYPES", "float_array", "index_array", "int32", "int_dtype", "pointer"]
+
+#: The dtypes a Mesh may give its integer arrays in (its ``int_dtype``).
+INT_DTYPES = (np.dtype(np.int64), np.dtype(np.int32))
 
 _INT32 = np.iinfo(np.int32)
 
@@ -54,10 +57,24 @@ def index_array(values: ArrayLike, shape: tuple[int | None, ...], name: str) -> 
             array = array.reshape((0, *shape[1:]))
     elif array.dtype.kind not in "iu":
         raise TypeError(f"{name} must hold integers, got dtype {array.dtype}")
-    elif array.min() < _INT32.min or array.max() > _INT32.max:
-        raise ValueError(f"{name} holds values outside the int32 range of libbodt")
+    elif not np.can_cast(array.dtype, np.int32):
+        outside = np.flatnonzero((array < _INT32.min) | (array > _INT32.max))
+        if outside.size:
+            at = np.unravel_index(outside[0], array.shape)
+            raise ValueError(
+                f"{name} holds {array[at]} at {list(map(int, at))}, outside the int32 range of libbodt "
+                f"[{_INT32.min}, {_INT32.max}] ({outside.size} such values)"
+            )
     _check_shape(array, shape, name)
     return np.ascontiguousarray(array, dtype=np.int32)
+
+
+def int_dtype(value: DTypeLike) -> np.dtype:
+    """``value`` checked to be one of INT_DTYPES."""
+    dtype = np.dtype(value)
+    if dtype not in INT_DTYPES:
+        raise ValueError(f"int_dtype must be numpy.int64 or numpy.int32, got {dtype}")
+    return dtype
 
 
 def pointer(array: np.ndarray | None) -> "ctypes._Pointer | None":

@@ -67,7 +67,10 @@ class Measure(IntEnum):
 
 
 class Mode(IntEnum):
-    """enum bodt_mode: the improvement method a step uses."""
+    """enum bodt_mode: the improvement method a step uses.
+
+    :meth:`from_name` takes the names of the command's ``--mode``.
+    """
 
     LAPLACE = 1
     ODT = 2
@@ -76,6 +79,26 @@ class Mode(IntEnum):
     OPT_WEIGHTED = 5
     PHASED_ODT = 6
     NODT = 7
+
+    @classmethod
+    def from_name(cls, name: str) -> "Mode":
+        """The mode that ``bodt improve --mode NAME`` names: "bodt", "bodt-basic", "odt", "laplace", ..."""
+        try:
+            return _MODE_NAMES[name]
+        except (KeyError, TypeError):
+            raise ValueError(f"unknown mode {name!r}: the modes are {', '.join(_MODE_NAMES)}") from None
+
+
+# The command's --mode names (src/cli/args.cpp), in its order.
+_MODE_NAMES = {
+    "bodt": Mode.BODT,
+    "bodt-basic": Mode.BODT_BASIC,
+    "odt": Mode.ODT,
+    "laplace": Mode.LAPLACE,
+    "opt-weighted": Mode.OPT_WEIGHTED,
+    "phased": Mode.PHASED_ODT,
+    "nodt": Mode.NODT,
+}
 
 
 class Param(IntEnum):

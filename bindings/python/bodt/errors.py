@@ -1,6 +1,7 @@
 """Exceptions for the failed calls of libbodt, one class per bodt_status."""
 
 from .enums import Status
+from .results import StepReport
 
 __all__ = [
     "BadMeshError",
@@ -55,7 +56,16 @@ class FileError(Error):
 
 
 class CancelledError(Error):
-    """BODT_ERR_CANCELLED: the improve() callback asked to stop."""
+    """BODT_ERR_CANCELLED: the improve() callback asked to stop.
+
+    ``reports`` holds the :class:`~bodt.StepReport` of each step that
+    improve() call did, as it would have returned them: the mesh keeps these
+    steps, the last being the one whose callback stopped the run.
+    """
+
+    def __init__(self, status: Status | int, status_text: str, message: str) -> None:
+        super().__init__(status, status_text, message)
+        self.reports: list[StepReport] = []
 
 
 class UnsupportedError(Error):

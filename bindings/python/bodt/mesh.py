@@ -8,11 +8,12 @@ from ctypes import byref, c_double, c_int, c_int32, c_int64, c_void_p
 from typing import Any, NoReturn
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, DTypeLike
 
-from ._arrays import float_array, index_array, int32, pointer
+from ._arrays import float_array, index_array, int32, int_dtype, pointer
 from ._library import STEP_CALLBACK, check, lib
 from .enums import CreateFlag, Format, Measure, Mode, Param
+from .errors import CancelledError
 from .results import (
     BoundaryFaces,
     FaceRegions,
@@ -64,19 +65,34 @@ class Mesh:
     dtype and memory order) into a new handle (bodt_mesh_create_ex).
     ``base`` (0 or 1) is the index base of every vertex, tet and region index
     the mesh takes and gives, in arrays and in error messages.  A wrong array
-    shape raises ValueError before the library sees it; data the library
-    refuses raises the :class:`~bodt.Error` subclass of its status, with its
-    message.
+    shape, or an integer outside the int32 range of the C API, raises
+    ValueError before the library sees it; data the library refuses raises
+    the :class:`~bodt.Error` subclass of its status, with its message.
 
     bodt.h documents what each method does: each one is a C call, named in
-    its docstring.  Getters return new numpy arrays (int32 indices, float64
-    values).  The handle is freed by :meth:`close`, on leaving a ``with``
-    block, or when the Mesh is garbage collected; a closed Mesh raises
-    ValueError.  As with the C handle, one Mesh must not be used from two
-    threads at the same time.
+    its docstring.  Getters return new numpy arrays: float64 values, and
+    integers (indices, ids, refs, classes) in ``int_dtype``: numpy.int64 by
+    default, as numpy and meshio use, or numpy.int32, as the C API gives
+    them and earlier versions of the package did.  The handle is freed by
+    :meth:`close`, on leaving a ``with`` block, or when the Mesh is garbage
+    collected; a closed Mesh raises ValueError.  As with the C handle, one
+    Mesh must not be used from two threads at the same time.
+
+    ``field_data`` maps names to tags as meshio's ``field_data`` does
+    (Gmsh's physical names: name -> [tag, dimension]); the library does not
+    read it: :func:`~bodt.from_meshio` fills it and :meth:`to_meshio` gives
+    it back.
     """
 
-    def __init__(self, points: ArrayLike, tets: ArrayLike, base: int = 0, accept_inverted: bool = False) -> None:
+    def __init__(
+        self,
+        points: ArrayLike,
+        tets: ArrayLike,
+        base: int = 0,
+        accept_inverted: bool = False,
+        int_dtype: DTypeLike = np.int64,
+    ) -> None:
+        self.int_dtype = int_dtype
         xyz = float_array(points, (None, 3), "points")
         vertices = index_array(tets, (None, 4), "tets")
         base = int32(base, "base")
@@ -92,6 +108,7 @@ class Mesh:
         )
         check(status, None)
         self._own(handle.value)
+        self.field_data: dict[str, Any] = {}
 
     @classmethod
     def read(
@@ -100,6 +117,7 @@ class Mesh:
         accept_inverted: bool = False,
         base: int = 0,
         format: Format = Format.AUTO,  # noqa: A002 (bodt.h's name)
+        int_dtype: DTypeLike = np.int64,
     ) -> "Mesh":
         """A mesh from a file (bodt_mesh_read_format), counting from ``base`` (0 or 1).
 
@@ -111,8 +129,19 @@ class Mesh:
         handle = c_void_p()
         check(lib.bodt_mesh_read_format(os.fsencode(path), int32(format, "format"), flags, byref(handle)), None)
         mesh = cls.__new__(cls)
+        mesh.int_dtype = int_dtype
         mesh._own(handle.value)
+        mesh.field_data = {}
         return mesh
+
+    @property
+    def int_dtype(self) -> np.dtype:
+        """The dtype of the integer arrays this mesh gives: numpy.int64 (the default) or numpy.int32."""
+        return self._int_dtype
+
+    @int_dtype.setter
+    def int_dtype(self, value: DTypeLike) -> None:
+        self._int_dtype = int_dtype(value)
 
     def _own(self, handle: int) -> None:
         self._handle_value = handle
@@ -182,15 +211,22 @@ class Mesh:
 
     # ------------------------------------------------------------ getters
 
-    def _fetch(self, function: Callable[..., int], shape: tuple[int, ...], dtype: type = np.int32) -> np.ndarray:
-        out = np.empty(shape, dtype)
+    def _ints(self, array: np.ndarray) -> np.ndarray:
+        """An int32 array from the C API in this mesh's int_dtype."""
+        return array.astype(self._int_dtype, copy=False)
+
+    def _fetch(self, function: Callable[..., int], shape: tuple[int, ...]) -> np.ndarray:
+        """An integer array filled by ``function``, in int_dtype."""
+        out = np.empty(shape, np.int32)
         self._check(function(self._handle, pointer(out), out.size))
-        return out
+        return self._ints(out)
 
     @property
     def points(self) -> np.ndarray:
         """(nverts, 3) coordinates (bodt_mesh_get_vertices)."""
-        return self._fetch(lib.bodt_mesh_get_vertices, (self.num_vertices, 3), np.float64)
+        xyz = np.empty((self.num_vertices, 3))
+        self._check(lib.bodt_mesh_get_vertices(self._handle, pointer(xyz), xyz.size))
+        return xyz
 
     @property
     def tets(self) -> np.ndarray:
@@ -208,11 +244,11 @@ class Mesh:
         triangles = np.empty((nfaces, 3), np.int32)
         markers = np.empty(nfaces, np.int32)
         self._check(lib.bodt_mesh_get_boundary_faces(self._handle, pointer(triangles), pointer(markers), nfaces))
-        return BoundaryFaces(triangles, markers)
+        return BoundaryFaces(self._ints(triangles), self._ints(markers))
 
     def _flagged(self, function: Callable[..., int]) -> np.ndarray:
         flags = self._fetch(function, (self.num_vertices,))
-        return (np.flatnonzero(flags) + self.base).astype(np.int32)
+        return self._ints(np.flatnonzero(flags) + self.base)
 
     @property
     def fixed_vertices(self) -> np.ndarray:
@@ -227,7 +263,7 @@ class Mesh:
         self._check(
             lib.bodt_mesh_get_feature_edges_ex(self._handle, byref(nedges), pointer(edges), pointer(refs), len(edges))
         )
-        return edges, refs
+        return self._ints(edges), self._ints(refs)
 
     @property
     def feature_edges(self) -> np.ndarray:
@@ -270,7 +306,7 @@ class Mesh:
                 self._handle, pointer(offsets), offsets.size, pointer(parents), pointer(weights), parents.size
             )
         )
-        return VertexParents(offsets, parents, weights)
+        return VertexParents(offsets, self._ints(parents), weights)
 
     @property
     def tet_origins(self) -> np.ndarray:
@@ -344,13 +380,20 @@ class Mesh:
 
     @property
     def mode(self) -> Mode:
-        """The :class:`~bodt.Mode` of the next steps (bodt_get_mode, bodt_set_mode)."""
+        """The :class:`~bodt.Mode` of the next steps (bodt_get_mode, bodt_set_mode).
+
+        Set it to a Mode, its value, or the name the command's ``--mode``
+        takes ("bodt", "bodt-basic", "odt", "laplace", "opt-weighted",
+        "phased", "nodt"; :meth:`Mode.from_name`).
+        """
         mode = c_int()
         self._check(lib.bodt_get_mode(self._handle, byref(mode)))
         return Mode(mode.value)
 
     @mode.setter
-    def mode(self, mode: Mode | int) -> None:
+    def mode(self, mode: Mode | int | str) -> None:
+        if isinstance(mode, str):
+            mode = Mode.from_name(mode)
         self._check(lib.bodt_set_mode(self._handle, int32(mode, "mode")))
 
     def set_param(self, key: Param | int, value: float) -> None:
@@ -383,18 +426,21 @@ class Mesh:
     def improve(
         self,
         max_steps: int = 20,
-        mode: Mode | int | None = None,
+        mode: Mode | int | str | None = None,
         callback: Callable[[StepReport], Any] | None = None,
         **params: float,
     ) -> list[StepReport]:
         """Step until converged or ``max_steps`` were done (bodt_run); the reports of the steps done.
 
-        ``mode`` and ``params`` (keyword names of :class:`~bodt.Param`
-        members in lower case: ``tolerance=1e-8``, ``ops=Op.SMOOTH``) are set
-        on the mesh first and stay set.  ``callback`` gets each step's
-        :class:`~bodt.StepReport`; a true result stops the run with
-        :class:`~bodt.CancelledError`, and an exception it raises stops the
-        run and is raised again here.  The steps done are kept either way.
+        ``mode`` (a :class:`~bodt.Mode` or the command's name for it,
+        ``mode="odt"``: see :attr:`mode`) and ``params`` (keyword names of
+        :class:`~bodt.Param` members in lower case: ``tolerance=1e-8``,
+        ``ops=Op.SMOOTH``) are set on the mesh first and stay set.
+        ``callback`` gets each step's :class:`~bodt.StepReport`; a true
+        result stops the run with :class:`~bodt.CancelledError`, whose
+        ``reports`` are the steps' reports this call would have returned,
+        and an exception it raises stops the run and is raised again here.
+        The steps done are kept either way.
         """
         keys = {}
         for name, value in params.items():
@@ -422,7 +468,11 @@ class Mesh:
         status = lib.bodt_run(self._handle, int32(max_steps, "max_steps"), STEP_CALLBACK(on_step), None)
         if raised:
             raise raised[0]
-        self._check(status)
+        try:
+            self._check(status)
+        except CancelledError as cancelled:
+            cancelled.reports = reports
+            raise
         return reports
 
     # ----------------------------------------- geometry and reference (paper 002)
@@ -447,7 +497,7 @@ class Mesh:
         regions = np.empty(nfaces, np.int32)
         shapes = np.empty(nfaces, np.int32)
         self._check(lib.bodt_mesh_get_face_regions(self._handle, pointer(regions), pointer(shapes), nfaces))
-        return FaceRegions(regions, shapes)
+        return FaceRegions(self._ints(regions), self._ints(shapes))
 
     def region_shape(self, region: int) -> ShapeFit:
         """The shape fitted to a surface region, numbered from the base (bodt_mesh_get_region_shape)."""
@@ -489,6 +539,17 @@ class Mesh:
         error = sized(RecoveryErrorStruct)
         self._check(lib.bodt_mesh_recovery_error(self._handle, byref(error)))
         return RecoveryReport.from_struct(error)
+
+    # ------------------------------------------------------------- meshio
+
+    def to_meshio(self) -> Any:
+        """This mesh as a ``meshio.Mesh`` (needs meshio); :func:`bodt.from_meshio` reads it back.
+
+        See :mod:`bodt._meshio` for the cells and data it holds.
+        """
+        from ._meshio import to_meshio  # meshio is imported only when asked for
+
+        return to_meshio(self)
 
     # -------------------------------------------------------------- files
 

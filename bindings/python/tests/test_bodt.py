@@ -130,8 +130,55 @@ class TestConstruction(ErrorAssertions):
             with bodt.Mesh(xyz, ids) as mesh:
                 np.testing.assert_array_equal(mesh.points, points)
                 np.testing.assert_array_equal(mesh.tets, tets)
-                self.assertEqual(mesh.tets.dtype, np.int32)
+                self.assertEqual(mesh.tets.dtype, np.int64)
                 self.assertEqual(mesh.points.dtype, np.float64)
+
+    def test_int_dtype(self):
+        """Every integer array out is int64 by default, int32 on request (the earlier default)."""
+        points, tets = meshes.box(2, jitter=0.2)
+        getters = {
+            "tets": lambda m: m.tets,
+            "regions": lambda m: m.regions,
+            "triangles": lambda m: m.boundary_faces().triangles,
+            "markers": lambda m: m.boundary_faces().markers,
+            "fixed_vertices": lambda m: m.fixed_vertices,
+            "feature_edges": lambda m: m.feature_edges,
+            "feature_edge_refs": lambda m: m.feature_edge_refs,
+            "corners": lambda m: m.corners,
+            "vertex_refs": lambda m: m.vertex_refs,
+            "vertex_classes": lambda m: m.vertex_classes,
+            "parents": lambda m: m.vertex_parents().parents,
+            "tet_origins": lambda m: m.tet_origins,
+            "geometry_classes": lambda m: m.geometry_classes,
+            "face_regions": lambda m: m.face_regions().regions,
+            "face_shapes": lambda m: m.face_regions().shapes,
+        }
+        with bodt.Mesh(points, tets) as wide, bodt.Mesh(points, tets, int_dtype=np.int32) as narrow:
+            for mesh in (wide, narrow):
+                mesh.set_fixed_vertices([13])
+                mesh.set_feature_edges([[0, 1]], [5])
+                mesh.set_corners([0])
+                mesh.set_boundary_faces(mesh.boundary_faces().triangles[:2], [3, 4])
+            self.assertEqual(wide.int_dtype, np.int64)
+            self.assertEqual(narrow.int_dtype, np.int32)
+            for name, get in getters.items():
+                self.assertEqual(get(wide).dtype, np.int64, name)
+                self.assertEqual(get(narrow).dtype, np.int32, name)
+                np.testing.assert_array_equal(get(wide), get(narrow), name)
+            self.assertEqual(wide.vertex_parents().offsets.dtype, np.int64)  # int64_t in the C API
+            wide.int_dtype = "int32"
+            self.assertEqual(wide.tets.dtype, np.int32)
+            with self.assertRaisesRegex(ValueError, "int_dtype must be numpy.int64 or numpy.int32, got int16"):
+                wide.int_dtype = np.int16
+        directory = tempfile.TemporaryDirectory()
+        self.addCleanup(directory.cleanup)
+        path = os.path.join(directory.name, "box.mesh")
+        with bodt.Mesh(points, tets) as mesh:
+            mesh.write(path)
+        with bodt.Mesh.read(path) as wide, bodt.Mesh.read(path, int_dtype=np.int32) as narrow:
+            self.assertEqual((wide.tets.dtype, narrow.tets.dtype), (np.int64, np.int32))
+        with self.assertRaisesRegex(ValueError, "int_dtype must be numpy.int64 or numpy.int32, got float64"):
+            bodt.Mesh(points, tets, int_dtype=float)
 
     def test_shape_errors_before_the_library(self):
         points, tets = meshes.box(1)
@@ -148,9 +195,20 @@ class TestConstruction(ErrorAssertions):
         with self.assertRaisesRegex(TypeError, "tets must hold integers"):
             bodt.Mesh(points, tets.astype(np.float64))
         big = tets.astype(np.int64)
-        big[0, 0] = 2**32  # would wrap to 0 in int32
-        with self.assertRaisesRegex(ValueError, "outside the int32 range"):
+        big[3, 2] = 2**32  # would wrap to 0 in int32
+        big[5, 1] = -(2**31) - 1
+        with self.assertRaises(ValueError) as context:
             bodt.Mesh(points, big)
+        self.assertEqual(
+            str(context.exception),
+            "tets holds 4294967296 at [3, 2], outside the int32 range of libbodt [-2147483648, 2147483647] "
+            "(2 such values)",
+        )
+        for dtype in (np.uint32, np.uint64):
+            wrapped = tets.astype(dtype)
+            wrapped[0, 0] = 2**31
+            with self.assertRaisesRegex(ValueError, "tets holds 2147483648 at \\[0, 0\\], outside the int32 range"):
+                bodt.Mesh(points, wrapped)
         with self.assertRaisesRegex(ValueError, "base = 4294967296 is outside the int32 range"):
             bodt.Mesh(points, tets, base=2**32)
 
@@ -298,7 +356,7 @@ class TestMeshData(ErrorAssertions):
         refs = np.arange(27) % 4 + 10
         self.mesh.set_vertex_refs(refs)
         np.testing.assert_array_equal(self.mesh.vertex_refs, refs)
-        self.assertEqual(self.mesh.vertex_refs.dtype, np.int32)
+        self.assertEqual(self.mesh.vertex_refs.dtype, np.int64)
         with self.assertRaisesRegex(ValueError, r"refs must have shape \(27,\)"):
             self.mesh.set_vertex_refs(refs[:-1])
 
@@ -389,6 +447,25 @@ class TestParams(ErrorAssertions):
         self.assertEqual(context.exception.message, "unknown mode 8")
         self.assertIs(self.mesh.mode, bodt.Mode.ODT)
 
+    def test_mode_by_the_command_name(self):
+        names = {
+            "bodt": bodt.Mode.BODT, "bodt-basic": bodt.Mode.BODT_BASIC, "odt": bodt.Mode.ODT,
+            "laplace": bodt.Mode.LAPLACE, "opt-weighted": bodt.Mode.OPT_WEIGHTED, "phased": bodt.Mode.PHASED_ODT,
+            "nodt": bodt.Mode.NODT,
+        }
+        for name, mode in names.items():
+            self.assertIs(bodt.Mode.from_name(name), mode)
+            self.mesh.mode = name
+            self.assertIs(self.mesh.mode, mode, name)
+        for wrong in ("ODT", "phased_odt", ""):
+            with self.assertRaises(ValueError) as context:
+                self.mesh.mode = wrong
+            self.assertEqual(
+                str(context.exception),
+                f"unknown mode {wrong!r}: the modes are bodt, bodt-basic, odt, laplace, opt-weighted, phased, nodt",
+            )
+        self.assertIs(self.mesh.mode, bodt.Mode.NODT)  # a refused name changes nothing
+
 
 class TestImprove(ErrorAssertions):
     def setUp(self):
@@ -477,7 +554,19 @@ class TestImprove(ErrorAssertions):
             self.mesh.improve(max_steps=20, callback=stop_after_two)
         self.assertEqual(context.exception.message, "cancelled by the callback after step 2")
         self.assertEqual([r.step for r in seen], [1, 2])
+        self.assertEqual(context.exception.reports, seen)  # what improve() would have returned
+        self.assertEqual(context.exception.reports[-1].min_dihedral, self.mesh.quality().min_dihedral)
         self.assertEqual(self.mesh.step().step, 3)  # the steps done are kept
+
+    def test_reports_alike_returned_or_cancelled(self):
+        """A run stopped by its callback after the step it would have ended with reports what a full run returns."""
+        with bodt.Mesh(self.points, self.tets) as twin:
+            returned = twin.improve(max_steps=4, mode="odt")
+        self.assertEqual(len(returned), 4)
+        with self.assertRaises(bodt.CancelledError) as context:
+            self.mesh.improve(max_steps=20, mode="odt", callback=lambda report: report.step == 4)
+        self.assertEqual(context.exception.reports, returned)
+        self.assertIs(self.mesh.mode, bodt.Mode.ODT)
 
     def test_exception_in_callback_propagates(self):
         class Boom(Exception):

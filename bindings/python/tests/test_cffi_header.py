@@ -1,10 +1,11 @@
-"""The installed bodt.h, as it is, through cffi's ABI mode: parsed after the C preprocessor, then used.
+"""bodt.cffi_cdef() through cffi's ABI mode: the declarations the C compiler sees in bodt.h, and they work.
 
-BODT_TEST_HEADER is the installed bodt.h, BODT_TEST_LIBRARY the installed
-libbodt.so.<major> and BODT_TEST_CC the C compiler (set by CTest).  The
-preprocessor gets only empty <stddef.h> and <stdint.h> (cffi knows size_t
-and the intN_t types) and keeps the #defines, of which the integer BODT_
-ones go to cffi as constants.
+BODT_TEST_HEADER is the bodt.h next to the library, BODT_TEST_LIBRARY that
+libbodt.so.<major> and BODT_TEST_CC the C compiler (set by CTest): the
+build tree's (python.package) or the installed ones (python.cffi_header).
+The reference for the declarations is the header after the C preprocessor,
+given only empty <stddef.h> and <stdint.h> (cffi knows size_t and the intN_t
+types, and cannot parse the C library's own headers).
 """
 
 import ctypes
@@ -18,7 +19,7 @@ import unittest
 import cffi
 
 import bodt
-from bodt import structs
+from bodt import _cdef, structs
 
 HEADER = os.environ["BODT_TEST_HEADER"]
 LIBRARY = os.environ["BODT_TEST_LIBRARY"]
@@ -46,12 +47,87 @@ def preprocessed_header() -> str:
     return "\n".join(lines)
 
 
+def declared(ffi: cffi.FFI, lib: object) -> dict[str, object]:
+    """What an FFI knows: each name on the library (function type or constant), each type's layout."""
+    found: dict[str, object] = {}
+    for name in dir(lib):
+        value = getattr(lib, name)
+        found[name] = ffi.typeof(value).cname if isinstance(value, ffi.CData) else value
+    typedefs, structs_, unions = ffi.list_types()
+    for name in typedefs:
+        found[f"typedef {name}"] = ffi.typeof(name).cname
+    for name in structs_:
+        ctype = ffi.typeof(f"struct {name}")
+        fields = ctype.fields or []  # None for the opaque bodt_mesh
+        found[f"struct {name}"] = [(field, f.type.cname, f.offset) for field, f in fields]
+        if fields:
+            found[f"sizeof struct {name}"] = ffi.sizeof(ctype)
+    found["unions"] = unions
+    return found
+
+
+class TestDeclarations(unittest.TestCase):
+    def test_the_compiler_sees_the_same(self):
+        ours, theirs = cffi.FFI(), cffi.FFI()
+        ours.cdef(bodt.cffi_cdef())
+        theirs.cdef(preprocessed_header())
+        mine, reference = declared(ours, ours.dlopen(LIBRARY)), declared(theirs, theirs.dlopen(LIBRARY))
+        self.assertEqual(mine, reference)
+        self.assertIn("bodt_run", mine)  # the comparison is of something
+        self.assertIn("BODT_OPS_MODE_DEFAULT", mine)
+
+    def test_shipped_header_is_this_header(self):
+        with open(_cdef.HEADER, "rb") as shipped, open(HEADER, "rb") as header:
+            self.assertEqual(shipped.read(), header.read())
+
+    def test_conditions_and_macros(self):
+        header = """
+            #ifndef GUARD
+            #define GUARD
+            #include <stdint.h>
+            #define API
+            #define COUNT (3)
+            #define NEGATIVE (-2)
+            #if defined(GUARD) && !(defined(__GNUC__) || defined __cplusplus)
+            API int32_t kept(int32_t x[COUNT]);  /* #not a directive */
+            #elif defined(GUARD)
+            int not_this(void);
+            #else
+            int nor_this(void);
+            #endif
+            #ifdef __cplusplus
+            extern "C" {
+            #endif
+            #endif
+        """
+        self.assertEqual(
+            _cdef.declarations(header).split("\n"),
+            ["#define COUNT 3", "#define NEGATIVE -2", "            int32_t kept(int32_t x[COUNT]);", ""],
+        )
+
+    def test_refuses_what_it_does_not_know(self):
+        for header, message in [
+            ("#define MAX(a, b) ((a) > (b) ? (a) : (b))", "does not handle '#define MAX(a, b)"),
+            ('#include "other.h"', "does not handle '#include \"other.h\"'"),
+            ("#if VERSION > 2\n#endif", "cannot evaluate '#if VERSION > 2'"),
+            ("#if (defined(A)\n#endif", "unbalanced parentheses"),
+            ("#ifdef A", "#if without #endif"),
+            ("#endif", "#endif without #if"),
+            ("#pragma once", "does not handle '#pragma once'"),
+        ]:
+            with self.assertRaisesRegex(RuntimeError, re.escape(message)):
+                _cdef.declarations(header)
+
+
 class TestCffiHeader(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.ffi = cffi.FFI()
-        cls.ffi.cdef(preprocessed_header())
-        cls.lib = cls.ffi.dlopen(LIBRARY)
+        cls.ffi.cdef(bodt.cffi_cdef())
+        cls.lib = cls.ffi.dlopen(bodt.library_path())
+
+    def test_the_library_the_package_loaded(self):
+        self.assertTrue(os.path.samefile(bodt.library_path(), LIBRARY))
 
     def message(self, mesh) -> str:
         return self.ffi.string(self.lib.bodt_mesh_last_error(mesh)).decode()

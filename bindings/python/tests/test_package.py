@@ -1,11 +1,13 @@
-"""The bodt package against bodt.h (enums, param types, functions, structs) and its library lookup.
+"""The bodt package against bodt.h (enums, param types, functions, structs), the command's modes, its library lookup.
 
-BODT_TEST_HEADER is include/bodt.h, BODT_TEST_LIBRARY the built libbodt.so
-and BODT_TEST_PACKAGE_DIR the staged package (set by CTest).
+BODT_TEST_HEADER is include/bodt.h, BODT_TEST_LIBRARY the built libbodt.so,
+BODT_TEST_PACKAGE_DIR the staged package and BODT_TEST_CLI the built bodt
+command (set by CTest).
 """
 
 import ctypes
 import ctypes.util
+import itertools
 import os
 import re
 import shutil
@@ -14,12 +16,16 @@ import sys
 import tempfile
 import unittest
 
+import numpy as np
+
 import bodt
-from bodt import _library, structs
+import meshes
+from bodt import _library, enums, structs
 
 HEADER = os.environ["BODT_TEST_HEADER"]
 LIBRARY = os.environ["BODT_TEST_LIBRARY"]
 PACKAGE_DIR = os.environ["BODT_TEST_PACKAGE_DIR"]
+CLI = os.environ["BODT_TEST_CLI"]
 
 
 def header_text() -> str:
@@ -62,6 +68,11 @@ class TestAgainstHeader(unittest.TestCase):
             }
             in_python = {name: int(member) for name, member in python_enum.__members__.items()}
             self.assertEqual(in_python, in_header, c_name)
+
+    def test_header_shipped_in_the_package(self):
+        """bodt.cffi_cdef() reads the package's copy of bodt.h: it must be the header itself."""
+        with open(os.path.join(PACKAGE_DIR, "bodt.h"), "rb") as shipped, open(HEADER, "rb") as header:
+            self.assertEqual(shipped.read(), header.read())
 
     def test_integer_defines(self):
         defines = dict(re.findall(r"^#define (BODT_\w+) \(?(-?\d+)\)?$", header_text(), flags=re.M))
@@ -108,6 +119,38 @@ class TestAgainstHeader(unittest.TestCase):
             for (field, ours), (_, theirs) in zip(in_python, in_header):
                 self.assertEqual(ctypes.sizeof(ours), ctypes.sizeof(theirs), f"{name}.{field}")
                 self.assertEqual(getattr(ours, "_type_", ours), getattr(theirs, "_type_", theirs), f"{name}.{field}")
+
+
+class TestCommandModes(unittest.TestCase):
+    """Mode.from_name against the command `bodt improve --mode NAME`."""
+
+    def test_the_command_names_the_same_modes(self):
+        result = subprocess.run([CLI, "improve", "in.mesh", "out.mesh", "--mode", "no-such-mode"],
+                                capture_output=True, text=True)
+        self.assertNotEqual(result.returncode, 0)
+        known = re.search(r"unknown mode 'no-such-mode' \(known: ([^)]*)\)", result.stderr)
+        self.assertIsNotNone(known, result.stderr)
+        self.assertEqual(known[1].split(", "), list(enums._MODE_NAMES))
+
+    def test_each_name_improves_as_the_command(self):
+        """Two steps of each mode by its name give the command's mesh, bit for bit (and each mode its own)."""
+        points, tets = meshes.box(3, jitter=0.3, seed=3)
+        with tempfile.TemporaryDirectory() as tmp:
+            source = os.path.join(tmp, "in.mesh")
+            with bodt.Mesh(points, tets) as mesh:
+                mesh.write(source)
+            results = {}
+            for name in enums._MODE_NAMES:
+                target = os.path.join(tmp, f"{name}.mesh")
+                subprocess.run([CLI, "improve", source, target, "--mode", name, "--iterations", "2", "--quiet"],
+                               check=True, capture_output=True)
+                with bodt.Mesh.read(source) as mine, bodt.Mesh.read(target) as theirs:
+                    mine.improve(max_steps=2, mode=name)
+                    np.testing.assert_array_equal(mine.points, theirs.points, name)
+                    np.testing.assert_array_equal(mine.tets, theirs.tets, name)
+                    results[name] = mine.points
+        for (a, pa), (b, pb) in itertools.combinations(results.items(), 2):
+            self.assertFalse(pa.shape == pb.shape and np.array_equal(pa, pb), f"{a} and {b} gave the same mesh")
 
 
 class TestLibraryLookup(unittest.TestCase):
