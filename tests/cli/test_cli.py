@@ -4,13 +4,14 @@
     test_cli.py --bodt PATH --data DIR --out DIR CASE
 
 CASE is one of quality_json, improve, improve_ops, exit_codes,
-improve_opt_weighted, improve_phased, improve_surface (with TetGen), surface_without_tetgen
-(without), compare, convert, convert_formats (needs the .meshb, .msh, .vtu
-and .inp writers), param, progress (uses a pseudo-terminal and a named
-pipe for a slow read), histogram, help, report, early_output (named pipes
-as inputs that must not be read), threads, improve_json, inverted_message.
-Every value checked comes from running the command; expected mesh quality is recomputed here from the mesh
-file with plain Python (no library code).  Exits 0 on success, 1 on the
+improve_opt_weighted, improve_phased, improve_surface (with TetGen),
+surface_without_tetgen (without), compare, convert, convert_formats (needs
+the .meshb, .msh, .vtu and .inp writers), param, progress (uses a
+pseudo-terminal and a named pipe for a slow read), histogram, help, report,
+early_output (named pipes as inputs that must not be read), threads,
+improve_json, inverted_message.  Every value checked comes from running the
+command; expected mesh quality is recomputed here from the mesh file with
+plain Python (no library code).  Exits 0 on success, 1 on the
 first failed check.
 """
 import argparse
