@@ -180,6 +180,22 @@ bool parse_ops(const std::string& value, int32_t& ops, std::string& error) {
     }
 }
 
+std::string ops_text(int32_t ops) {
+    if (ops == BODT_OPS_MODE_DEFAULT) return "default";
+    std::string text;
+    for (const Named& op : kOps)
+        if (ops & op.value) text += (text.empty() ? "" : ",") + std::string(op.name);
+    return text.empty() ? "none" : text;
+}
+
+bool parse_threads(const std::string& value, int32_t& threads, std::string& error) {
+    if (!parse_int32(value, threads)) {
+        error = "--threads: '" + value + "' is not a whole number (0: every core)";
+        return false;
+    }
+    return true;
+}
+
 bool parse_iterations(const std::string& value, int32_t& iterations, std::string& error) {
     if (!parse_int32(value, iterations) || iterations < 1 || iterations > 1000000) {
         error = "--iterations must be a whole number from 1 to 1000000";

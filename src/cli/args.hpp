@@ -49,12 +49,18 @@ bool parse_mode(const std::string& value, int& mode, std::string& error);
 const char* mode_name(int mode);
 // --ops LIST: "default" or comma-separated smooth, flip, insert, collapse.
 bool parse_ops(const std::string& value, int32_t& ops, std::string& error);
+// A BODT_PARAM_OPS value as --ops takes it: "default", or the names of its
+// bits separated by commas ("none" for 0).
+std::string ops_text(int32_t ops);
 // --iterations N: a whole number from 1 to 1000000.
 bool parse_iterations(const std::string& value, int32_t& iterations, std::string& error);
 
 // --format NAME -> enum bodt_format (mesh, meshb, tetgen, gmsh, gmsh-binary,
 // gmsh22, gmsh22-binary, vtu, abaqus).
 bool parse_format(const std::string& value, int& format, std::string& error);
+
+// --threads N: a whole number (the library checks its range).
+bool parse_threads(const std::string& value, int32_t& threads, std::string& error);
 
 // A --param k=v: k is a BODT_PARAM_* name in lower case without the prefix.
 struct ParamInfo {

@@ -1,5 +1,6 @@
 #include "cli/compare.hpp"
 
+#include "cli/domain_boundary.hpp"
 #include "cli/hausdorff.hpp"
 #include "cli/quality_output.hpp"
 
@@ -13,61 +14,12 @@ namespace bodt_cli {
 
 namespace {
 
-struct Arrays {
-    int32_t nverts = 0, ntets = 0, nfaces = 0;
-    std::vector<double> xyz;
-    std::vector<int32_t> tets, faces, markers;
-};
-
-bool read_arrays(const bodt_mesh* mesh, Arrays& m, std::string& error) {
-    int status = bodt_mesh_get_counts(mesh, &m.nverts, &m.ntets, &m.nfaces);
-    if (status == BODT_OK) {
-        m.xyz.resize(3 * static_cast<size_t>(m.nverts));
-        m.tets.resize(4 * static_cast<size_t>(m.ntets));
-        m.faces.resize(3 * static_cast<size_t>(m.nfaces));
-        m.markers.resize(static_cast<size_t>(m.nfaces));
-        status = bodt_mesh_get_vertices(mesh, m.xyz.data(), m.xyz.size());
-    }
-    if (status == BODT_OK) status = bodt_mesh_get_tets(mesh, m.tets.data(), m.tets.size());
-    if (status == BODT_OK && m.nfaces > 0)
-        status = bodt_mesh_get_boundary_faces(mesh, m.faces.data(), m.markers.data(), m.markers.size());
-    if (status != BODT_OK) {
-        error = bodt_mesh_last_error(mesh);
-        return false;
-    }
-    return true;
-}
-
-// The domain boundary: the faces of exactly one tet (interfaces between
-// regions and marked internal faces are not part of the shape; paper 000
-// compares the surface meshes of the models).  Indices are the handle's,
-// 0-based (meshes read by the command are).
-TriangleSurface domain_boundary(const Arrays& m) {
-    std::vector<std::array<int32_t, 3>> faces;
-    faces.reserve(4 * static_cast<size_t>(m.ntets));
-    static const int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-    for (size_t t = 0; t < static_cast<size_t>(m.ntets); ++t)
-        for (const auto& f : kFace) {
-            std::array<int32_t, 3> key = {m.tets[4 * t + f[0]], m.tets[4 * t + f[1]], m.tets[4 * t + f[2]]};
-            std::sort(key.begin(), key.end());
-            faces.push_back(key);
-        }
-    std::sort(faces.begin(), faces.end());
-    TriangleSurface s;
-    s.xyz = m.xyz;
-    for (size_t k = 0; k < faces.size();) {
-        size_t j = k;
-        while (j < faces.size() && faces[j] == faces[k]) ++j;
-        if (j - k == 1) s.triangles.insert(s.triangles.end(), faces[k].begin(), faces[k].end());
-        k = j;
-    }
-    return s;
-}
-
-double triangle_area(const std::vector<double>& xyz, const int32_t* f) {
-    const double* a = &xyz[3 * static_cast<size_t>(f[0])];
-    const double* b = &xyz[3 * static_cast<size_t>(f[1])];
-    const double* c = &xyz[3 * static_cast<size_t>(f[2])];
+// The area of boundary face `f` of `m`.
+double face_area(const MeshSnapshot& m, int32_t f) {
+    const auto corner = [&](int k) {
+        return &m.xyz[3 * static_cast<size_t>(m.faces[3 * static_cast<size_t>(f) + k] - m.base)];
+    };
+    const double *a = corner(0), *b = corner(1), *c = corner(2);
     const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
     return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -75,15 +27,22 @@ double triangle_area(const std::vector<double>& xyz, const int32_t* f) {
 
 }  // namespace
 
-bool compare_meshes(const bodt_mesh* original, const bodt_mesh* improved, Comparison& c, std::string& error) {
-    Arrays a, b;
-    if (!read_arrays(original, a, error) || !read_arrays(improved, b, error)) return false;
-    c.before = measure(original);
-    c.after = measure(improved);
+void compare_meshes(const MeshSnapshot& a, const MeshSnapshot& b, Comparison& c) {
+    compare_meshes(a, b, domain_boundary(a), domain_boundary(b), c);
+}
+
+void compare_meshes(const MeshSnapshot& a, const MeshSnapshot& b, const std::vector<int32_t>& boundary_a,
+                    const std::vector<int32_t>& boundary_b, Comparison& c) {
+    c.before = a.quality;
+    c.after = b.quality;
     c.volume_change = c.after.volume - c.before.volume;
     c.volume_change_rel = c.before.volume != 0.0 ? c.volume_change / c.before.volume : 0.0;
 
-    const TriangleSurface sa = domain_boundary(a), sb = domain_boundary(b);
+    TriangleSurface sa, sb;
+    sa.xyz = a.xyz;
+    sa.triangles = boundary_a;
+    sb.xyz = b.xyz;
+    sb.triangles = boundary_b;
     c.boundary_triangles_before = static_cast<int32_t>(sa.triangles.size() / 3);
     c.boundary_triangles_after = static_cast<int32_t>(sb.triangles.size() / 3);
     // L: the largest side of the original's bounding box (paper 000, the
@@ -115,12 +74,12 @@ bool compare_meshes(const bodt_mesh* original, const bodt_mesh* improved, Compar
     for (int32_t f = 0; f < a.nfaces; ++f) {
         MarkerArea& m = by_marker[a.markers[f]];
         ++m.faces_before;
-        m.area_before += triangle_area(a.xyz, &a.faces[3 * static_cast<size_t>(f)]);
+        m.area_before += face_area(a, f);
     }
     for (int32_t f = 0; f < b.nfaces; ++f) {
         MarkerArea& m = by_marker[b.markers[f]];
         ++m.faces_after;
-        m.area_after += triangle_area(b.xyz, &b.faces[3 * static_cast<size_t>(f)]);
+        m.area_after += face_area(b, f);
     }
     c.markers.clear();
     c.markers_lost.clear();
@@ -130,7 +89,6 @@ bool compare_meshes(const bodt_mesh* original, const bodt_mesh* improved, Compar
         if (marker != 0 && m.faces_before > 0 && m.faces_after == 0) c.markers_lost.push_back(marker);
     }
     c.markers_kept = c.markers_lost.empty();
-    return true;
 }
 
 void print_comparison(const Comparison& c, const std::string& original_name, const std::string& improved_name,

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "bodt.h"
+#include "cli/mesh_snapshot.hpp"
 
 #include <cstdint>
 #include <string>
@@ -34,8 +35,11 @@ struct Comparison {
     std::vector<int32_t> markers_lost;
 };
 
-// False (with `error`) when a mesh's arrays cannot be read.
-bool compare_meshes(const bodt_mesh* original, const bodt_mesh* improved, Comparison& c, std::string& error);
+void compare_meshes(const MeshSnapshot& original, const MeshSnapshot& improved, Comparison& c);
+// The same with the domain boundaries of both (domain_boundary.hpp) given.
+void compare_meshes(const MeshSnapshot& original, const MeshSnapshot& improved,
+                    const std::vector<int32_t>& original_boundary, const std::vector<int32_t>& improved_boundary,
+                    Comparison& c);
 
 // The comparison on stdout: tables, or one JSON object.
 void print_comparison(const Comparison& c, const std::string& original_name, const std::string& improved_name,

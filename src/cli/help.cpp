@@ -10,7 +10,8 @@ const char* const kCommonOptions =
     "  -q, --quiet\n"
     "         Print nothing but errors.\n"
     "  -v, --verbose\n"
-    "         Say more on stderr: the parameters in effect and a line per step.\n"
+    "         Say more on stderr (improve: the parameters in effect, a line per\n"
+    "         phase and per step).\n"
     "  -h, --help\n"
     "         Print this page.\n";
 
@@ -58,7 +59,8 @@ const char* const kExitStatus =
     "     --param value (nothing is written)\n"
     "  2  an input could not be read or is not a valid mesh\n"
     "  3  the improvement failed\n"
-    "  4  the output could not be written\n";
+    "  4  the output could not be written: also found before any input is\n"
+    "     read (unknown extension, missing or unwritable directory)\n";
 
 struct Page {
     const char* command;
@@ -88,7 +90,8 @@ const Page kPages[] = {
      "                      boundaries, face markers and quality of two meshes\n"
      "  convert IN OUT      convert a mesh between file formats\n"
      "  report ORIG IMPR -o report.html\n"
-     "                      an HTML report comparing two meshes\n"
+     "                      an HTML report comparing two meshes: quality,\n"
+     "                      where the worst tets are, boundary, how it was made\n"
      "  help [COMMAND]      print the manual page of a command\n"
      "\n"
      "  Every command takes --help for its own page.\n",
@@ -101,17 +104,38 @@ const Page kPages[] = {
     {"improve",
      "bodt improve - improve a tetrahedral mesh",
      "bodt improve IN OUT [--mode MODE] [--iterations N] [--ops LIST]\n"
-     "             [--keep-surface] [--param KEY=VALUE]... [--reference ORIGINAL]\n"
-     "             [--format NAME] [--quiet | --verbose]\n",
+     "             [--keep-surface] [--param KEY=VALUE]... [--threads N]\n"
+     "             [--reference ORIGINAL] [--format NAME] [--json]\n"
+     "             [--report REPORT.html] [--quiet | --verbose]\n",
      "Reads IN, improves it, writes OUT and prints the quality before and after,\n"
      "then a summary: the steps done and the flips, inserted vertices and\n"
      "collapsed edges in all.  Boundary moves keep the volume (phased: the\n"
      "fitted shapes; nodt: the surface only); no mode inverts a tet.\n"
      "\n"
-     "While it runs, a progress bar on stderr shows the step and the current\n"
-     "minimum and maximum dihedral angle, when stderr is a terminal (never in a\n"
-     "pipe or a log).  Nothing is written to OUT unless the improvement\n"
-     "succeeds.\n",
+     "OUT (and --report) are checked first: an unknown extension or a directory\n"
+     "that is missing or cannot be written stops the command (exit status 4)\n"
+     "before IN is opened, as do bad options (1).  Nothing is written to OUT\n"
+     "unless the improvement succeeds.  IN may hold inverted tets only with\n"
+     "--mode phased, which untangles them.\n"
+     "\n"
+     "PROGRESS (on stderr)\n"
+     "  What it is doing, from the start: reading IN, setting up, step k of n,\n"
+     "  writing OUT, with the time elapsed and, after a step, an estimate of the\n"
+     "  time left if all n steps run (from the mean step after the first; a run\n"
+     "  stops earlier when it converges).\n"
+     "  - stderr a terminal: one line redrawn in place, its clock running while\n"
+     "    the library works (a step's figures show once it ends):\n"
+     "      [####................] step 4/20  min 26.76 deg  max 133.98 deg\n"
+     "      flips 152  1.2 s, ~4.8 s left\n"
+     "    and at the end: done in 6.1 s (reading 0.8 s, setting up 0.1 s, ...).\n"
+     "  - stderr a log or a pipe: nothing for a run done within 5 s; a longer\n"
+     "    run, from its 5th second on, logs a line for each phase and a step\n"
+     "    line at most every 5 s (and the last step), each ending with the time\n"
+     "    elapsed: \"reading big.mesh [5.0 s]\", \"step 3/20: min dihedral 30.121,\n"
+     "    ... [12.4 s; step 2.3 s; about 39 s left]\".\n"
+     "  - --verbose: those lines for every phase and step, from the start,\n"
+     "    terminal or not, after the parameters in effect.\n"
+     "  - --quiet: nothing.\n",
      "  --mode MODE\n"
      "         bodt (default): B-ODT, paper 000 Algorithms 1-3: ODT inside,\n"
      "           boundary vertices in their tangent plane, feature-line vertices\n"
@@ -177,17 +201,41 @@ const Page kPages[] = {
      "           qn_max_iterations, threads (whole numbers).\n"
      "         An unknown key, a malformed value or one the library refuses is a\n"
      "         usage error.  --verbose lists every parameter in effect.\n"
+     "  --threads N\n"
+     "         Threads of a smoothing sweep (--param threads=N; default 1, 0 for\n"
+     "         every core or OMP_NUM_THREADS).  The result is the same for any N.\n"
+     "         Set before the --param values, so --param threads=M wins.\n"
      "  --reference ORIGINAL\n"
      "         (phased only) The mesh before the deformation, with the same\n"
      "         vertices: its density and geometric accuracy are recovered; the\n"
      "         density and geometric errors are printed before and after.\n"
      "  --format NAME\n"
      "         Write OUT in this format whatever its extension: mesh, meshb,\n"
-     "         tetgen, gmsh, gmsh-binary, gmsh22, gmsh22-binary, vtu, vtk, abaqus.\n",
+     "         tetgen, gmsh, gmsh-binary, gmsh22, gmsh22-binary, vtu, vtk, abaqus.\n"
+     "  --json\n"
+     "         Print one JSON object on stdout instead of the tables (also with\n"
+     "         --quiet): version, input, output, reference, report, mode, ops,\n"
+     "         max_steps, threads, keep_surface, options (as typed), parameters\n"
+     "         (every one in effect), steps, converged (stopped before max_steps),\n"
+     "         flips, vertices_inserted, edges_collapsed, seconds (reading,\n"
+     "         setting_up, steps, writing, total), quality_before and\n"
+     "         quality_after (the members of bodt quality --json), with --mode\n"
+     "         phased recovery_before and recovery_after, and per_step: for each\n"
+     "         step its seconds and the fields of bodt_step_report (step,\n"
+     "         min_dihedral, max_dihedral, min_stretch, vertices_moved,\n"
+     "         moves_rejected, moves_shortened, not_positive_definite, max_move,\n"
+     "         flips, vertices_inserted, edges_collapsed).  bodt report --run\n"
+     "         reads it back.\n"
+     "  --report FILE\n"
+     "         Also write the HTML report of bodt report comparing IN and OUT,\n"
+     "         with how OUT was made: mode, options, parameters, steps and the\n"
+     "         figures of each.\n",
      "  bodt improve part.mesh part_better.mesh\n"
      "  bodt improve part.msh part_better.vtu --iterations 50 --ops smooth,flip\n"
      "  bodt improve part.mesh out.mesh --mode opt-weighted --param weight_c=0.8\n"
-     "  bodt improve deformed.mesh fixed.mesh --mode phased --reference part.mesh\n"},
+     "  bodt improve deformed.mesh fixed.mesh --mode phased --reference part.mesh\n"
+     "  bodt improve big.msh big_better.msh --threads 0 --report report.html\n"
+     "  bodt improve part.mesh out.mesh --json > run.json\n"},
     {"quality",
      "bodt quality - print the quality of a tetrahedral mesh",
      "bodt quality MESH [--json] [--histogram]\n",
@@ -195,13 +243,17 @@ const Page kPages[] = {
      "minimum, maximum and mean dihedral angle (degrees), the minimum and mean\n"
      "stretch (6 sqrt(6) V / (sum of face areas x longest edge): 1 for the\n"
      "regular tet, 0 for a flat one) and the volume.  An inverted tet counts as\n"
-     "having a 0 and a 180 degree angle.\n",
+     "having a 0 and a 180 degree angle.  Compare, convert and report read\n"
+     "meshes with inverted tets too.\n",
      "  --json\n"
      "         Print one JSON object instead of the table: mesh, vertices, tets,\n"
      "         boundary_faces, unused_vertices, inverted, volume, min_dihedral,\n"
-     "         max_dihedral, mean_dihedral, stretch_min, stretch_mean,\n"
+     "         max_dihedral, mean_dihedral, min_stretch, mean_stretch,\n"
      "         dihedral_histogram (23 counts); with --histogram also\n"
-     "         dihedral_bin_edges (24 degrees).\n"
+     "         dihedral_bin_edges (24 degrees).  stretch_min and stretch_mean,\n"
+     "         the names of earlier versions, still come with the same values\n"
+     "         (deprecated: use min_stretch and mean_stretch, the names of\n"
+     "         bodt_quality and of the Python API).\n"
      "  --histogram\n"
      "         Also print the histogram of the 6 dihedral angles of every tet in\n"
      "         23 bins, fine at both ends (0 5 10 15 20 25 30 40 50 ... 150 160\n"
@@ -249,14 +301,32 @@ const Page kPages[] = {
      "  bodt convert part.mesh part.msh --format gmsh22\n"},
     {"report",
      "bodt report - an HTML report comparing two meshes",
-     "bodt report ORIGINAL IMPROVED -o REPORT.html\n",
-     "Writes a self-contained HTML page (no script, no external resource)\n"
-     "comparing ORIGINAL and IMPROVED: the quality table, the histograms of\n"
-     "dihedral angles and stretch, and the worst tets.\n",
+     "bodt report ORIGINAL IMPROVED -o REPORT.html [--run RUN.json]\n",
+     "Writes a self-contained HTML page (no script, no external resource,\n"
+     "inline SVG) comparing ORIGINAL and IMPROVED:\n"
+     "  - the quality table;\n"
+     "  - where the worst tets are: the boundary of each mesh seen from three\n"
+     "    sides (top from +z, front from -y, side from +x) to one scale, with\n"
+     "    the 10 worst tets marked by numbered dots at their centroids.  Up to\n"
+     "    6000 faces a view are drawn shaded; beyond, the silhouette and the\n"
+     "    edges where the surface bends by more than 30 degrees (at most 8000),\n"
+     "    so that the page of a mesh of a million tets stays a few MB;\n"
+     "  - the boundary: volume change, relative Hausdorff distance and face\n"
+     "    markers, as bodt compare computes them;\n"
+     "  - the histograms of dihedral angles and stretch;\n"
+     "  - the worst tets (the 20 of lowest stretch);\n"
+     "  - how IMPROVED was made (mode, options, parameters, steps and the\n"
+     "    figures of each), when known: from --run, or written by bodt improve\n"
+     "    --report.\n",
      "  -o, --output FILE\n"
-     "         The HTML file to write (required).\n",
-     "  bodt improve part.mesh part_better.mesh\n"
-     "  bodt report part.mesh part_better.mesh -o report.html\n"},
+     "         The HTML file to write (required; checked before any input is\n"
+     "         read).\n"
+     "  --run RUN.json\n"
+     "         The JSON that bodt improve --json printed for the run that made\n"
+     "         IMPROVED.\n",
+     "  bodt improve part.mesh part_better.mesh --report report.html\n"
+     "  bodt improve part.mesh part_better.mesh --json > run.json\n"
+     "  bodt report part.mesh part_better.mesh -o report.html --run run.json\n"},
 };
 
 }  // namespace

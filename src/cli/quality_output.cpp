@@ -1,6 +1,8 @@
 #include "cli/quality_output.hpp"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 namespace bodt_cli {
@@ -65,14 +67,24 @@ std::string json_string(const std::string& text) {
     return out + "\"";
 }
 
+std::string json_number(double v) {
+    if (!std::isfinite(v)) return "null";
+    char text[40];
+    std::snprintf(text, sizeof text, "%.15g", v);
+    if (std::strtod(text, nullptr) != v) std::snprintf(text, sizeof text, "%.17g", v);
+    return text;
+}
+
 std::string quality_json_members(const bodt_quality& q, bool edges) {
     char text[1024];
     std::snprintf(text, sizeof text,
                   "\"vertices\": %d, \"tets\": %d, \"boundary_faces\": %d, \"unused_vertices\": %d, "
                   "\"inverted\": %d, \"volume\": %.17g, \"min_dihedral\": %.6f, \"max_dihedral\": %.6f, "
-                  "\"mean_dihedral\": %.6f, \"stretch_min\": %.6f, \"stretch_mean\": %.6f, \"dihedral_histogram\": [",
+                  "\"mean_dihedral\": %.6f, \"min_stretch\": %.6f, \"mean_stretch\": %.6f, \"stretch_min\": %.6f, "
+                  "\"stretch_mean\": %.6f, \"dihedral_histogram\": [",
                   q.num_vertices, q.num_tets, q.num_boundary_faces, q.num_unused_vertices, q.num_inverted, q.volume,
-                  q.min_dihedral, q.max_dihedral, q.mean_dihedral, q.min_stretch, q.mean_stretch);
+                  q.min_dihedral, q.max_dihedral, q.mean_dihedral, q.min_stretch, q.mean_stretch, q.min_stretch,
+                  q.mean_stretch);
     std::string out = text;
     for (int b = 0; b < BODT_DIHEDRAL_BINS; ++b)
         out += (b ? ", " : "") + std::to_string(static_cast<long long>(q.dihedral_histogram[b]));

@@ -20,8 +20,13 @@ void print_row(const char* name, const std::string& before, const std::string& a
 
 // `text` as a JSON string literal, quotes included.
 std::string json_string(const std::string& text);
+// A double as a JSON number: the shortest of 15 and 17 significant digits
+// that reads back as `v`; null when it is not finite.
+std::string json_number(double v);
 // The quality as JSON members, without braces: "\"vertices\": 27, ...";
-// with `edges`, also "dihedral_bin_edges".
+// with `edges`, also "dihedral_bin_edges".  min_stretch and mean_stretch (the
+// names of bodt_quality) come again as stretch_min and stretch_mean, the
+// deprecated names of earlier versions.
 std::string quality_json_members(const bodt_quality& q, bool edges);
 
 // The 23-bin dihedral histogram as a text bar chart on stdout.

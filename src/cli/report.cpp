@@ -15,12 +15,21 @@
 //  - Stretch histograms: 20 bins of 0.05 over [0, 1]; inverted and flat tets
 //    get their own bar on the left.
 //  - The worst tets are ranked by stretch, lowest first (inverted tets
-//    first), ties by index; indices in the handle's base.
+//    first), ties by index; indices in the handle's base.  The first
+//    kMarkedCount of them are the numbered dots of the views.
+//  - Section order: key figures, quality, where the worst tets are, the
+//    boundary (bodt compare's figures), histograms, worst tets, how the mesh
+//    was made (long: its table of steps).
 //  - Nonzero bars are at least 1.5 px tall, so that the few bad tets in the
 //    tails stay visible at linear scale; each bar has a <title> tooltip with
 //    its exact count, and every histogram carries its counts in data-counts.
 #include "cli/report.hpp"
 
+#include "cli/compare.hpp"
+#include "cli/domain_boundary.hpp"
+#include "cli/report_format.hpp"
+#include "cli/report_sections.hpp"
+#include "cli/report_views.hpp"
 #include "quality/tet_geometry.hpp"
 
 #include <algorithm>
@@ -35,176 +44,63 @@
 namespace bodt_cli {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kAngleBins = 180;      // 1-degree bins over [0, 180]
 constexpr int kStretchBins = 20;     // 0.05 over [0, 1]
 constexpr double kSmallAngle = 10.0; // "tets with an angle below 10 degrees"
 constexpr double kLargeAngle = 165.0;
 constexpr int kWorstCount = 20;
+constexpr size_t kMarkedCount = 10;  // of them marked in the views
 
 const char* const kColorBefore = "#d9822b";
 const char* const kColorAfter = "#2f6fde";
 const char* const kColorInverted = "#c62828";
 
-// ------------------------------------------------------------- formatting
-
-std::string escape_html(const std::string& s) {
-    std::string out;
-    out.reserve(s.size());
-    for (char c : s) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&#39;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
-
-std::string format(const char* fmt, double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, fmt, v);
-    return buf;
-}
-
-std::string fixed(double v, int decimals) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-    std::string s = buf;
-    if (s == "-0" || s.rfind("-0.", 0) == 0) {  // -0.00 reads as 0.00
-        bool all_zero = s.find_first_not_of("-0.") == std::string::npos;
-        if (all_zero) s.erase(0, 1);
-    }
-    return s;
-}
-
-// Full precision, for data-value attributes (round-trips a double).
-std::string exact(double v) { return format("%.17g", v); }
-
-// 1234567 -> "1,234,567".
-std::string grouped(int64_t v) {
-    std::string digits = std::to_string(v < 0 ? -v : v);
-    std::string out;
-    const size_t n = digits.size();
-    for (size_t i = 0; i < n; ++i) {
-        if (i > 0 && (n - i) % 3 == 0) out += ',';
-        out += digits[i];
-    }
-    return v < 0 ? "\xE2\x88\x92" + out : out;  // U+2212 minus
-}
-
-// A real number with a proper minus sign (U+2212) and six significant digits.
-std::string general(double v, int digits = 6) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    std::string s = buf;
-    if (!s.empty() && s[0] == '-') s = "\xE2\x88\x92" + s.substr(1);
-    return s;
-}
-
-std::string with_minus(std::string s) {
-    if (!s.empty() && s[0] == '-') s = "\xE2\x88\x92" + s.substr(1);
-    return s;
-}
-
-// A signed percentage: "+1.25 %", or "−1.1 × 10⁻¹³ %" when tiny.
-std::string percent(double p) {
-    const char* sign = p < 0 ? "\xE2\x88\x92" : "+";
-    const double a = std::fabs(p);
-    if (a >= 0.01) return sign + fixed(a, 2) + "\xE2\x80\x89%";
-    static const char* const sup[10] = {"\xE2\x81\xB0", "\xC2\xB9", "\xC2\xB2", "\xC2\xB3",
-                                        "\xE2\x81\xB4", "\xE2\x81\xB5", "\xE2\x81\xB6",
-                                        "\xE2\x81\xB7", "\xE2\x81\xB8", "\xE2\x81\xB9"};
-    int e = static_cast<int>(std::floor(std::log10(a)));
-    double m = a / std::pow(10.0, e);
-    if (m >= 9.95) {  // 9.96e-14 prints as 10.0
-        m /= 10.0;
-        ++e;
-    }
-    std::string exp_text = e < 0 ? "\xE2\x81\xBB" : "";  // superscript minus
-    for (char digit : std::to_string(e < 0 ? -e : e)) exp_text += sup[digit - '0'];
-    return sign + fixed(m, 1) + "\xE2\x80\x89\xC3\x97\xE2\x80\x89" "10" + exp_text +
-           "\xE2\x80\x89%";
-}
-
 // ------------------------------------------------------------- mesh data
 
+// A mesh's snapshot under the names the report uses, and what the report
+// derives from it.
 struct MeshData {
-    std::string name;
-    int32_t nverts = 0, ntets = 0, nfaces = 0;
-    int base = 0;
-    bodt_quality q{};
-    std::vector<double> xyz;
-    std::vector<int32_t> tets;
-    std::vector<double> min_d, max_d, stretch, volume;
+    explicit MeshData(const MeshSnapshot& snap)
+        : nverts(snap.nverts), ntets(snap.ntets), nfaces(snap.nfaces), base(snap.base), q(snap.quality),
+          xyz(snap.xyz), tets(snap.tets), min_d(snap.min_dihedral), max_d(snap.max_dihedral),
+          stretch(snap.stretch), volume(snap.volume) {}
+    const int32_t nverts, ntets, nfaces;
+    const int base;
+    const bodt_quality& q;
+    const std::vector<double>& xyz;
+    const std::vector<int32_t>& tets;
+    const std::vector<double>&min_d, &max_d, &stretch, &volume;
     std::vector<int64_t> angle_counts;    // kAngleBins
     std::vector<int64_t> stretch_counts;  // kStretchBins
     int64_t inverted = 0;                 // tets with 0 and 180 degrees
     int64_t small_angle = 0, large_angle = 0;
     int64_t bad_angle = 0;                // either of the two
+    std::vector<size_t> worst;            // the kWorstCount worst tets, worst first
 };
 
-bool api(int status, const bodt_mesh* mesh, const char* what, std::string& error) {
-    if (status == BODT_OK) return true;
-    error = std::string(what) + " failed: " + bodt_status_string(status);
-    const char* msg = bodt_mesh_last_error(mesh);
-    if (msg && *msg) error += std::string(" (") + msg + ")";
-    return false;
-}
-
-bool load(const bodt_mesh* mesh, const std::string& name, MeshData& d, std::string& error) {
-    d.name = name;
-    if (!mesh) {
-        error = "no mesh given for " + name;
-        return false;
-    }
-    if (!api(bodt_mesh_get_counts(mesh, &d.nverts, &d.ntets, &d.nfaces), mesh,
-             "bodt_mesh_get_counts", error))
-        return false;
-    d.q.size = sizeof(bodt_quality);
-    if (!api(bodt_mesh_quality(mesh, &d.q), mesh, "bodt_mesh_quality", error)) return false;
-    if (!api(bodt_mesh_get_index_base(mesh, &d.base), mesh, "bodt_mesh_get_index_base", error)) return false;
-
-    const size_t nv = static_cast<size_t>(d.nverts), nt = static_cast<size_t>(d.ntets);
-    d.xyz.resize(3 * nv);
-    d.tets.resize(4 * nt);
-    d.min_d.resize(nt);
-    d.max_d.resize(nt);
-    d.stretch.resize(nt);
-    d.volume.resize(nt);
-    if (!api(bodt_mesh_get_vertices(mesh, d.xyz.data(), d.xyz.size()), mesh,
-             "bodt_mesh_get_vertices", error) ||
-        !api(bodt_mesh_get_tets(mesh, d.tets.data(), d.tets.size()), mesh, "bodt_mesh_get_tets",
-             error) ||
-        !api(bodt_mesh_tet_quality(mesh, BODT_MEASURE_MIN_DIHEDRAL, d.min_d.data(), nt), mesh,
-             "bodt_mesh_tet_quality", error) ||
-        !api(bodt_mesh_tet_quality(mesh, BODT_MEASURE_MAX_DIHEDRAL, d.max_d.data(), nt), mesh,
-             "bodt_mesh_tet_quality", error) ||
-        !api(bodt_mesh_tet_quality(mesh, BODT_MEASURE_STRETCH, d.stretch.data(), nt), mesh,
-             "bodt_mesh_tet_quality", error) ||
-        !api(bodt_mesh_tet_quality(mesh, BODT_MEASURE_VOLUME, d.volume.data(), nt), mesh,
-             "bodt_mesh_tet_quality", error))
-        return false;
-
+// The histograms, counts and worst tets of `d`.
+bool derive(MeshData& d, std::string& error) {
+    const size_t nt = static_cast<size_t>(d.ntets);
     d.angle_counts.assign(kAngleBins, 0);
     d.stretch_counts.assign(kStretchBins, 0);
-    std::vector<bodt::TetPoints> tets(nt);
+    // Checked once here; the loops below read the corners freely.
+    for (size_t k = 0; k < 4 * nt; ++k)
+        if (d.tets[k] - d.base < 0 || d.tets[k] - d.base >= d.nverts) {
+            error = "tet " + std::to_string(k / 4 + static_cast<size_t>(d.base)) + " has a vertex index out of range";
+            return false;
+        }
+    const auto corners = [&](size_t t) {
+        bodt::TetPoints p;
+        for (size_t k = 0; k < 4; ++k) {
+            const double* x = &d.xyz[3 * static_cast<size_t>(d.tets[4 * t + k] - d.base)];
+            p[k] = bodt::Vec3(x[0], x[1], x[2]);
+        }
+        return p;
+    };
     int64_t negative = 0, positive = 0;
     for (size_t t = 0; t < nt; ++t) {
-        for (size_t k = 0; k < 4; ++k) {
-            const int32_t v = d.tets[4 * t + k] - d.base;
-            if (v < 0 || v >= d.nverts) {
-                error = "tet " + std::to_string(t + static_cast<size_t>(d.base)) +
-                        " has a vertex index out of range";
-                return false;
-            }
-            const double* x = &d.xyz[3 * static_cast<size_t>(v)];
-            tets[t][k] = bodt::Vec3(x[0], x[1], x[2]);
-        }
-        const int sign = bodt::orient(tets[t][0], tets[t][1], tets[t][2], tets[t][3]).sign;
+        const bodt::TetPoints p = corners(t);
+        const int sign = bodt::orient(p[0], p[1], p[2], p[3]).sign;
         negative += sign < 0;
         positive += sign > 0;
     }
@@ -213,8 +109,9 @@ bool load(const bodt_mesh* mesh, const std::string& name, MeshData& d, std::stri
     // last bits, and so their bins, follow the corner order.
     const bool flipped = negative > positive;
     for (size_t t = 0; t < nt; ++t) {
-        if (flipped) std::swap(tets[t][2], tets[t][3]);
-        auto angles = bodt::dihedral_angles(tets[t]);
+        bodt::TetPoints p = corners(t);
+        if (flipped) std::swap(p[2], p[3]);
+        auto angles = bodt::dihedral_angles(p);
         const bool inverted = d.min_d[t] <= 0.0 && d.max_d[t] >= 180.0;
         if (inverted) {  // as bodt_mesh_quality: one 0 and one 180 degree angle
             ++d.inverted;
@@ -235,6 +132,15 @@ bool load(const bodt_mesh* mesh, const std::string& name, MeshData& d, std::stri
         if (d.max_d[t] > kLargeAngle) ++d.large_angle;
         if (d.min_d[t] < kSmallAngle || d.max_d[t] > kLargeAngle) ++d.bad_angle;
     }
+    d.worst.resize(nt);
+    for (size_t i = 0; i < nt; ++i) d.worst[i] = i;
+    const size_t k = std::min<size_t>(kWorstCount, nt);
+    std::partial_sort(d.worst.begin(), d.worst.begin() + static_cast<std::ptrdiff_t>(k), d.worst.end(),
+                      [&](size_t x, size_t y) {
+                          if (d.stretch[x] != d.stretch[y]) return d.stretch[x] < d.stretch[y];
+                          return x < y;
+                      });
+    d.worst.resize(k);
     return true;
 }
 
@@ -401,8 +307,6 @@ void shared_scale(Chart& a, Chart& b) {
     a.y_step = b.y_step = step;
 }
 
-const char* kDeg = "\xC2\xB0";    // degree sign
-const char* kDash = "\xE2\x80\x93";  // en dash
 
 Chart dihedral_chart(const MeshData& d, const std::string& which, const char* color) {
     Chart c;
@@ -539,15 +443,8 @@ std::string quality_table(const MeshData& a, const MeshData& b) {
 }
 
 std::string worst_table(const MeshData& d, const std::string& which) {
-    const size_t nt = d.stretch.size();
-    std::vector<size_t> order(nt);
-    for (size_t i = 0; i < nt; ++i) order[i] = i;
-    const size_t k = std::min<size_t>(kWorstCount, nt);
-    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(k), order.end(),
-                      [&](size_t x, size_t y) {
-                          if (d.stretch[x] != d.stretch[y]) return d.stretch[x] < d.stretch[y];
-                          return x < y;
-                      });
+    const std::vector<size_t>& order = d.worst;
+    const size_t k = order.size();
     std::string s = "<div class=\"scroll\"><table class=\"worst\" id=\"worst-" + which +
                     "\" data-base=\"" + std::to_string(d.base) + "\">\n<thead><tr>"
                     "<th scope=\"col\">#</th><th scope=\"col\">Tet</th>"
@@ -565,7 +462,8 @@ std::string worst_table(const MeshData& d, const std::string& which) {
         const bool inv = d.min_d[t] <= 0.0 && d.max_d[t] >= 180.0;
         s += "<tr data-tet=\"" + std::to_string(t + static_cast<size_t>(d.base)) + "\"" +
              (inv ? " class=\"inverted\"" : "") + ">";
-        s += "<td class=\"rank\">" + std::to_string(r + 1) + "</td>";
+        s += "<td class=\"rank\">" + std::string(r < kMarkedCount ? "<span class=\"markdot\"></span>" : "") +
+             std::to_string(r + 1) + "</td>";
         s += "<td class=\"idx\">" + std::to_string(t + static_cast<size_t>(d.base)) + "</td>";
         s += std::string("<td data-value=\"") + exact(d.min_d[t]) + "\"" +
              (d.min_d[t] < kSmallAngle ? " class=\"bad\"" : "") + ">" + fixed(d.min_d[t], 2) +
@@ -662,6 +560,21 @@ table.worst td.idx { font-weight: 600; }
 table.worst td.bad { color: var(--bad); font-weight: 600; }
 table.worst tr.inverted td { background: #fdecec; }
 table.worst td.centroid, table.worst th.centroid { text-align: left; }
+.views { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; }
+figure.view { flex: 0 1 auto; padding: 6px; }
+svg.view { display: block; max-width: 100%; height: auto; }
+svg.view .marks text { fill: #fff; font: 700 80px system-ui, "DejaVu Sans", Arial, sans-serif; text-anchor: middle; }
+figure.view figcaption { font-weight: 400; font-size: 13px; color: var(--muted); }
+.markdot { display: inline-block; width: 9px; height: 9px; border-radius: 50%; background: #d81b60;
+  margin-right: 5px; vertical-align: baseline; }
+.card .n { font-size: 13px; color: var(--muted); overflow-wrap: anywhere; }
+.card .v .bad, tr.lost td { color: var(--bad); }
+table.run th { text-align: left; font-weight: 500; }
+table.run td { text-align: left; white-space: normal; }
+details { margin: 10px 0; }
+summary { cursor: pointer; color: var(--muted); font-size: 14px; }
+p.warn { color: var(--bad); }
+tr.skipped td { text-align: center; color: var(--muted); }
 footer { margin: 36px 0 28px; padding-top: 12px; border-top: 1px solid var(--line);
   color: var(--muted); font-size: 13px; }
 @media (max-width: 600px) {
@@ -693,12 +606,13 @@ std::string card(const std::string& key, const std::string& before, const std::s
 
 }  // namespace
 
-bool render_report(const bodt_mesh* original, const bodt_mesh* improved,
-                   const std::string& original_name, const std::string& improved_name,
-                   std::string& html, std::string& error) {
-    MeshData a, b;
-    if (!load(original, original_name, a, error) || !load(improved, improved_name, b, error))
-        return false;
+bool render_report(const MeshSnapshot& original, const MeshSnapshot& improved, const std::string& original_name,
+                   const std::string& improved_name, const RunRecord* run, std::string& html, std::string& error) {
+    MeshData a(original), b(improved);
+    if (!derive(a, error) || !derive(b, error)) return false;
+    const std::vector<int32_t> boundary_a = domain_boundary(original), boundary_b = domain_boundary(improved);
+    Comparison comparison;
+    compare_meshes(original, improved, boundary_a, boundary_b, comparison);
     const std::string version = bodt_version_string();
     const std::string na = escape_html(original_name), nb = escape_html(improved_name);
     const std::string deg = kDeg;
@@ -744,6 +658,27 @@ bool render_report(const bodt_mesh* original, const bodt_mesh* improved,
     s += quality_table(a, b);
     s += "</section>\n";
 
+    // Where the worst tets are.
+    {
+        const auto marked = [](const MeshData& d) {
+            return std::vector<size_t>(d.worst.begin(), d.worst.begin() + static_cast<std::ptrdiff_t>(
+                                                                             std::min(kMarkedCount, d.worst.size())));
+        };
+        s += "<section id=\"where\">\n<h2>Where the worst tets are</h2>\n<p class=\"note\">The boundary seen "
+             "from three sides, to one scale, with the " + std::to_string(kMarkedCount) + " worst tets of the table "
+             "below marked at their centroids by numbered dots (<span class=\"markdot\"></span>, seen through "
+             "the mesh).  Up to " + grouped(static_cast<int64_t>(kMaxViewFaces)) + " faces a view are drawn "
+             "shaded, far ones first; beyond, the outline: silhouette and edges where the surface bends by more "
+             "than 30" + deg + ".</p>\n";
+        s += "<h3><span class=\"dot after\"></span>Improved mesh</h3>\n" +
+             orthographic_views(improved, boundary_b, marked(b), "improved");
+        s += "<h3><span class=\"dot before\"></span>Original mesh</h3>\n" +
+             orthographic_views(original, boundary_a, marked(a), "original");
+        s += "</section>\n";
+    }
+
+    s += boundary_section(comparison);
+
     // Dihedral histograms.
     {
         Chart ca = dihedral_chart(a, "original", kColorBefore);
@@ -779,7 +714,8 @@ bool render_report(const bodt_mesh* original, const bodt_mesh* improved,
 
     // Worst tets.
     s += "<section id=\"worst\">\n<h2>Worst tets</h2>\n<p class=\"note\">The " +
-         std::to_string(kWorstCount) + " tets with the lowest stretch, worst first.  Tet "
+         std::to_string(kWorstCount) + " tets with the lowest stretch, worst first; the first " +
+         std::to_string(kMarkedCount) + " (<span class=\"markdot\"></span>) are marked in the views above.  Tet "
          "indices count from " + std::to_string(b.base) +
          ", as the mesh's own numbering; angles below 10" + deg + " or above 165" + deg +
          " in red.</p>\n";
@@ -787,18 +723,19 @@ bool render_report(const bodt_mesh* original, const bodt_mesh* improved,
     s += "<h3><span class=\"dot before\"></span>Original mesh</h3>\n" + worst_table(a, "original");
     s += "</section>\n";
 
+    s += run_section(run, improved.quality);
+
     s += "<footer>Generated by bodt " + escape_html(version) +
          ".  A self-contained page: no script, no external resource.</footer>\n</main>\n"
          "</body>\n</html>\n";
     return true;
 }
 
-bool write_report(const bodt_mesh* original, const bodt_mesh* improved,
-                  const std::string& original_name, const std::string& improved_name,
-                  const std::string& out_path, std::string& error) {
+bool write_report(const MeshSnapshot& original, const MeshSnapshot& improved, const std::string& original_name,
+                  const std::string& improved_name, const RunRecord* run, const std::string& out_path,
+                  std::string& error) {
     std::string html;
-    if (!render_report(original, improved, original_name, improved_name, html, error))
-        return false;
+    if (!render_report(original, improved, original_name, improved_name, run, html, error)) return false;
     std::ofstream out(out_path, std::ios::binary | std::ios::trunc);
     if (!out) {
         error = "cannot write " + out_path;

@@ -4,12 +4,14 @@
     test_cli.py --bodt PATH --data DIR --out DIR CASE
 
 CASE is one of quality_json, improve, improve_ops, exit_codes,
-improve_opt_weighted, improve_phased, improve_surface (with TetGen), surface_without_tetgen
-(without), compare, convert, convert_formats (needs the .meshb, .msh, .vtu
-and .inp writers), param, progress (uses a pseudo-terminal), histogram,
-help, report.  Every value checked comes from
-running the command; expected mesh quality is recomputed here from the mesh
-file with plain Python (no library code).  Exits 0 on success, 1 on the
+improve_opt_weighted, improve_phased, improve_surface (with TetGen),
+surface_without_tetgen (without), compare, convert, convert_formats (needs
+the .meshb, .msh, .vtu and .inp writers), param, progress (uses a
+pseudo-terminal and a named pipe for a slow read), histogram, help, report,
+early_output (named pipes as inputs that must not be read), threads,
+improve_json, inverted_message.  Every value checked comes from running the
+command; expected mesh quality is recomputed here from the mesh file with
+plain Python (no library code).  Exits 0 on success, 1 on the
 first failed check.
 """
 import argparse
@@ -21,6 +23,7 @@ import random
 import re
 import subprocess
 import sys
+import time
 
 FAILURES = []
 
@@ -163,11 +166,16 @@ def case_quality_json(args):
     q = quality_json(args, path)
     if q is None:
         return
-    for key in ("vertices", "tets", "min_dihedral", "max_dihedral", "stretch_min", "stretch_mean", "inverted",
-                "volume", "boundary_faces", "mean_dihedral", "dihedral_histogram"):
+    for key in ("vertices", "tets", "min_dihedral", "max_dihedral", "min_stretch", "mean_stretch", "inverted",
+                "volume", "boundary_faces", "mean_dihedral", "dihedral_histogram", "stretch_min", "stretch_mean"):
         check(key in q, "key %s missing from %s" % (key, sorted(q)))
     if FAILURES:
         return
+    # min_stretch and mean_stretch, as bodt_quality and the Python API name
+    # them; the deprecated stretch_min and stretch_mean the same values
+    check(q["stretch_min"] == q["min_stretch"] and q["stretch_mean"] == q["mean_stretch"],
+          "deprecated names differ: %r" % q)
+    q["stretch_min"], q["stretch_mean"] = q.pop("min_stretch"), q.pop("mean_stretch")
     # the known numbers of tests/data/box2.mesh (see tests/data/README)
     check(q["vertices"] == 27, "vertices %r" % q["vertices"])
     check(q["tets"] == 48, "tets %r" % q["tets"])
@@ -934,11 +942,15 @@ def case_param(args):
         check(not os.path.exists(dst), "%s wrote the output" % " ".join(bad))
 
 
-def run_on_pty(argv):
-    """Runs argv with stderr on a pseudo-terminal; (code, stdout, what the terminal got)."""
+def run_on_pty(argv, columns=200):
+    """Runs argv with stderr on a pseudo-terminal `columns` wide; (code,
+    stdout, what the terminal got)."""
     import pty
     import select
+    import fcntl
+    import termios
     master, slave = pty.openpty()
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 50, columns, 0, 0))
     p = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=slave, universal_newlines=True)
     os.close(slave)
     chunks = []
@@ -958,47 +970,102 @@ def run_on_pty(argv):
     return p.returncode, out, b"".join(chunks).decode("utf-8", "replace")
 
 
+def feed_later(fifo, path, delay):
+    """Writes the file `path` into the named pipe `fifo` after `delay`
+    seconds, from a thread: a reader of the FIFO sees a read that slow."""
+    import threading
+
+    def feed():
+        time.sleep(delay)
+        with open(fifo, "w") as f:
+            f.write(open(path).read())
+    t = threading.Thread(target=feed)
+    t.start()
+    return t
+
+
 def case_progress(args):
-    """The progress bar is on stderr only when it is a terminal; --verbose
-    prints a line per step anyway; --quiet prints nothing."""
-    src = os.path.join(args.out, "progress_pushed.mesh")
-    with open(os.path.join(args.data, "box2.mesh")) as f:
-        text = f.read()
-    with open(src, "w") as f:
-        f.write(text.replace("\n1.25 0.875 1.125 0\n", "\n1 1 1.9 0\n"))
+    """Progress on stderr: on a terminal a live line from the start (reading,
+    its clock running; steps with the time left; done); in a log nothing for
+    a short run, lines from the 5th second of a long one; --verbose a line
+    per phase and step; --quiet nothing."""
+    src = pushed_box2(args, "progress_pushed.mesh")
     dst = os.path.join(args.out, "progress_out.mesh")
-    # not a terminal: stderr stays empty
+    # not a terminal, a short run: stderr stays empty
     code, summary, out, err = improve_summary(args, src, dst, "--iterations", "4")
     check(code == 0 and summary is not None, "improve: %d %r" % (code, err))
-    check(err == "", "stderr is not a terminal, yet it got %r" % err)
-    # a terminal: the bar, redrawn in place, with the angles
+    check(err == "", "a short run in a log printed %r" % err)
+    # a terminal: the phases, then the bar redrawn in place, with the angles
     code, out, term = run_on_pty([args.bodt, "improve", src, dst, "--iterations", "4"])
     check(code == 0, "improve on a pty: exit %d %r" % (code, term))
     m = SUMMARY.search(out)
     check(m is not None, "improve on a pty: no summary on stdout %r" % out)
-    bars = re.findall(r"\r\[[#.]{20}\] step (\d+)/4  min (\d+\.\d\d) deg  max (\d+\.\d\d) deg  flips (\d+)", term)
+    check(term.startswith("\rreading " + src + "  "), "the live line does not start with reading: %r" % term[:60])
+    check("\rsetting up  " in term and "\rwriting " + dst + "  " in term, "phases missing: %r" % term)
+    bars = re.findall(r"\r\[[#.]{20}\] step (\d+)/4  min (\d+\.\d\d) deg  max (\d+\.\d\d) deg  flips (\d+)  "
+                      r"(\d+\.\d+) s(, ~(\d+\.\d+) s left)?", term)
     check(len(bars) >= 1, "no progress bar on the terminal: %r" % term)
     if m and bars:
-        check(len(bars) == int(m.group(1)), "%d bars for %s steps" % (len(bars), m.group(1)))
-        check([int(b[0]) for b in bars] == list(range(1, len(bars) + 1)), "bar steps %r" % [b[0] for b in bars])
+        steps = sorted({int(b[0]) for b in bars})
+        check(steps == list(range(1, int(m.group(1)) + 1)), "bar steps %r for %s steps" % (steps, m.group(1)))
         check(int(bars[-1][3]) == int(m.group(2)), "the bar's flips %s, the summary's %s" % (bars[-1][3], m.group(2)))
+        check(all((b[5] != "") == (int(b[0]) < 4) for b in bars), "the time left shows before the last step only: %r"
+              % bars)
+        clock = [float(b[4]) for b in bars]
+        check(clock == sorted(clock), "the clock went back: %r" % clock)
     if os.path.exists(dst) and bars:
         q = quality_of(dst)
         check(abs(float(bars[-1][1]) - q["min_dihedral"]) <= 0.006, "the bar's last min %s, the file's %r" %
               (bars[-1][1], q["min_dihedral"]))
-    check(term.endswith("\n"), "the bar's line is not ended: %r" % term[-40:])
+    check(re.search(r"\rdone in \d+\.\d+ s \(reading \S+ s, setting up \S+ s, \d+ steps \S+ s, writing \S+ s\)"
+                    r"\x1b\[K\r?\n$", term) is not None, "the line does not end with done: %r" % term[-120:])
+    # a narrow terminal: the line is cut to its width (a wrapped line could
+    # not be redrawn in place)
+    code, out, term = run_on_pty([args.bodt, "improve", src, dst, "--iterations", "4"], columns=50)
+    drawn = [re.sub(r"\x1b\[K", "", d) for d in term.rstrip("\r\n").split("\r") if d]
+    check(code == 0 and drawn and max(len(d) for d in drawn) <= 49, "lines wider than 49 columns: %r" % drawn)
+    # a slow read (the input through a FIFO, 1.5 s late): the clock runs
+    fifo = make_fifo(os.path.join(args.out, "progress_slow.mesh"))
+    feeder = feed_later(fifo, src, 1.5)
+    code, out, term = run_on_pty([args.bodt, "improve", fifo, dst, "--iterations", "4"])
+    feeder.join()
+    ticks = sorted({float(t) for t in re.findall(r"\rreading " + re.escape(fifo) + r"  (\d+\.\d+) s", term)})
+    check(code == 0 and len(ticks) >= 4 and ticks[-1] >= 1.0, "reading's clock on the terminal: %r" % ticks)
+    # an error on a terminal starts a line of its own
+    code, out, term = run_on_pty([args.bodt, "improve", os.path.join(args.out, "missing.mesh"), dst])
+    check(code == 2 and re.search(r"\x1b\[K\r?\nbodt: .*missing\.mesh", term) is not None,
+          "the error does not follow the live line on a line of its own: %r" % term)
     # --quiet on a terminal: nothing at all
     code, out, term = run_on_pty([args.bodt, "improve", src, dst, "--iterations", "4", "--quiet"])
     check(code == 0 and out == "" and term == "", "--quiet printed %r / %r" % (out, term))
     code, out, err = run(args.bodt, "improve", src, dst, "-q")
     check(code == 0 and out == "" and err == "" and os.path.exists(dst), "-q: %d %r %r" % (code, out, err))
-    # --verbose without a terminal: a line per step
+    # --verbose without a terminal: a line per phase and per step
     code, summary, out, err = improve_summary(args, src, dst, "--iterations", "4", "--verbose")
-    lines = re.findall(r"^step (\d+)/4: min dihedral (\S+), max dihedral (\S+),", err, re.M)
+    lines = re.findall(r"^step (\d+)/4: min dihedral (\S+), max dihedral (\S+), .*\[(\d+\.\d+) s; step (\d+\.\d+) s"
+                       r"(; about (\d+\.\d+) s left)?\]$", err, re.M)
     check(summary is not None and len(lines) == summary[0], "--verbose: %d step lines for %r: %r" %
           (len(lines), summary, err))
+    for phase in ("reading " + src, "setting up", "improving: at most 4 steps", "writing " + dst):
+        check(re.search("^" + re.escape(phase) + r" \[\d+\.\d+ s\]$", err, re.M) is not None,
+              "--verbose: no line for %r in %r" % (phase, err))
+    check(re.search(r"^done in \S+ s \(", err, re.M) is not None, "--verbose: no done line: %r" % err)
     code, out, err = run(args.bodt, "improve", src, dst, "--quiet", "--verbose")
     check(code == 1 and "exclude" in err, "--quiet --verbose: %d %r" % (code, err))
+    # a long run in a log (the input 6.5 s late): from 5 s on, a line for each
+    # phase and the last step, each with the time
+    feeder = feed_later(fifo, src, 6.5)
+    code, summary, out, err = improve_summary(args, fifo, dst, "--iterations", "4")
+    feeder.join()
+    check(code == 0 and summary is not None, "the long run: %d %r" % (code, err))
+    got = err.splitlines()
+    pattern = [r"reading %s \[5\.\d s\]" % re.escape(fifo), r"setting up \[6\.\d s\]",
+               r"improving: at most 4 steps \[6\.\d s\]",
+               r"step %d/4: min dihedral .* \[6\.\d s; step \d\.\d\d s(; about \d\.\d\d s left)?\]"
+               % (summary[0] if summary else 0),
+               r"writing %s \[6\.\d s\]" % re.escape(dst), r"done in 6\.\d s \(reading 6\.\d s, .*\)"]
+    check(len(got) == len(pattern) and all(re.match(p_ + "$", g) for p_, g in zip(pattern, got)),
+          "the long run's log:\n%s" % err)
 
 
 def case_histogram(args):
@@ -1034,11 +1101,12 @@ def case_help(args):
     CMD --help`, with the sections of a man page and the exit codes."""
     sections = ["NAME", "SYNOPSIS", "DESCRIPTION", "OPTIONS", "FILES", "EXIT STATUS", "EXAMPLES"]
     for cmd, must in (("improve", ["--mode", "--iterations", "--ops", "--keep-surface", "--param", "min_stretch",
-                                   "--quiet", "--verbose", "--format"]),
-                      ("quality", ["--json", "--histogram"]),
+                                   "--quiet", "--verbose", "--format", "--threads N", "--json", "per_step",
+                                   "--report FILE", "PROGRESS", "left"]),
+                      ("quality", ["--json", "--histogram", "min_stretch, mean_stretch", "deprecated"]),
                       ("compare", ["Hausdorff", "largest side", "markers kept"]),
                       ("convert", ["--format", "gmsh22-binary", "abaqus"]),
-                      ("report", ["-o"])):
+                      ("report", ["-o", "--run RUN.json", "worst tets", "Hausdorff"])):
         code, page, err = run(args.bodt, "help", cmd)
         check(code == 0, "help %s: exit %d" % (cmd, code))
         code2, page2, _ = run(args.bodt, cmd, "--help")
@@ -1091,6 +1159,240 @@ def case_report(args):
     check(code == 4, "report to an unwritable path: exit %d, expected 4" % code)
 
 
+# ------------------------------------------- issue 39: output first, threads, JSON
+
+def run_timed(argv, timeout, preexec_fn=None):
+    """(code, stdout, stderr), or None when argv did not end within timeout s."""
+    try:
+        p = subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True,
+                           timeout=timeout, preexec_fn=preexec_fn)
+    except subprocess.TimeoutExpired:
+        return None
+    return p.returncode, p.stdout, p.stderr
+
+
+def make_fifo(path):
+    """A named pipe nobody writes to: opening it for reading blocks, so a
+    command that exits at once given it as input never read it."""
+    if os.path.exists(path):
+        os.remove(path)
+    os.mkfifo(path)
+    return path
+
+
+def as_nobody():
+    """preexec_fn dropping root (who may write anywhere) to nobody."""
+    os.setgroups([])
+    os.setgid(65534)
+    os.setuid(65534)
+
+
+def case_early_output(args):
+    """The outputs are checked before the input is opened: a FIFO that nobody
+    writes to as IN would block any read, yet each bad OUT ends the command
+    at once with exit status 4 (bad options with 1), and nothing is written."""
+    fifo = make_fifo(os.path.join(args.out, "never_written.mesh"))
+    # the control: reading the FIFO does block (so the checks below can fail)
+    r = run_timed([args.bodt, "quality", fifo], 2)
+    check(r is None, "bodt quality FIFO did not block: %r" % (r,))
+    good = os.path.join(args.out, "early_ok.mesh")
+    if os.path.exists(good):
+        os.remove(good)
+    missing_dir = os.path.join(args.out, "no_such_dir")
+    a_dir = os.path.join(args.out, "early_a_dir.mesh")
+    os.makedirs(a_dir, exist_ok=True)
+    a_file = os.path.join(args.out, "early_a_file.txt")
+    with open(a_file, "w") as f:
+        f.write("x")
+    cases = [
+        (["improve", fifo, os.path.join(args.out, "early.xyz")], 4, [".xyz", "--format"]),
+        (["improve", fifo, os.path.join(args.out, "early_noext")], 4, ["no extension"]),
+        (["improve", fifo, os.path.join(missing_dir, "x.mesh")], 4, ["no_such_dir", "No such file"]),
+        (["improve", fifo, os.path.join(a_file, "x.mesh")], 4, ["not a directory"]),
+        (["improve", fifo, a_dir], 4, ["is a directory"]),
+        (["improve", fifo, os.path.join(missing_dir, "x.node")], 4, ["no_such_dir"]),
+        (["improve", fifo, good, "--report", os.path.join(missing_dir, "r.html")], 4, ["--report", "no_such_dir"]),
+        (["convert", fifo, os.path.join(args.out, "early.xyz")], 4, [".xyz"]),
+        (["convert", fifo, os.path.join(missing_dir, "x.msh")], 4, ["no_such_dir"]),
+        (["report", fifo, fifo, "-o", os.path.join(missing_dir, "r.html")], 4, ["no_such_dir"]),
+        # options the library refuses, found on a mesh of one tet before IN is read
+        (["improve", fifo, good, "--param", "weight_c=2"], 1, ["weight_c"]),
+        (["improve", fifo, good, "--threads", "-1"], 1, ["--threads"]),
+        (["improve", fifo, good, "--threads", "two"], 1, ["--threads", "two"]),
+        (["improve", fifo, good, "--mode", "phased", "--keep-surface"], 1, ["--keep-surface"]),
+        (["improve", fifo, good, "--report"], 1, ["--report"]),
+    ]
+    for argv, want, words in cases:
+        r = run_timed([args.bodt] + argv, 10)
+        what = "bodt " + " ".join(argv)
+        if not check(r is not None, "%s read the input (blocked on the FIFO)" % what):
+            continue
+        code, out, err = r
+        check(code == want, "%s: exit %d, expected %d: %r" % (what, code, want, err))
+        for w in words:
+            check(w in err, "%s: %r not in %r" % (what, w, err))
+    check(not os.path.exists(good), "a refused command wrote %s" % good)
+    check(not os.path.exists(missing_dir), "%s was created" % missing_dir)
+    # a directory the user may not write to (root may write anywhere: then the
+    # command runs as nobody), and an existing OUT that is read-only
+    ro = os.path.join(args.out, "early_read_only")
+    os.makedirs(ro, exist_ok=True)
+    os.chmod(ro, 0o555)
+    locked = os.path.join(args.out, "early_locked.mesh")
+    with open(locked, "w") as f:
+        f.write("locked\n")
+    os.chmod(locked, 0o444)
+    drop = as_nobody if os.geteuid() == 0 else None
+    for out_path, word in ((os.path.join(ro, "x.mesh"), "Permission denied"), (locked, "Permission denied")):
+        r = run_timed([args.bodt, "improve", fifo, out_path], 10, preexec_fn=drop)
+        if not check(r is not None, "improve to %s read the input" % out_path):
+            continue
+        check(r[0] == 4 and word in r[2], "improve to %s: exit %d %r" % (out_path, r[0], r[2]))
+    check(os.listdir(ro) == [] and open(locked).read() == "locked\n", "an unwritable output was written")
+    os.chmod(ro, 0o755)
+    os.chmod(locked, 0o644)
+    # the usual case is not refused: a good OUT, and IN fed to the FIFO
+    src = os.path.join(args.data, "box2.mesh")
+    p = subprocess.Popen([args.bodt, "improve", fifo, good, "-q"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                         universal_newlines=True)
+    with open(fifo, "w") as f:
+        f.write(open(src).read())
+    out, err = p.communicate(timeout=60)
+    check(p.returncode == 0 and os.path.exists(good), "improve from the FIFO: %d %r" % (p.returncode, err))
+
+
+def pushed_box2(args, name):
+    """box2.mesh with its centre vertex pushed towards the top (bad tets)."""
+    src = os.path.join(args.out, name)
+    with open(os.path.join(args.data, "box2.mesh")) as f:
+        text = f.read()
+    with open(src, "w") as f:
+        f.write(text.replace("\n1.25 0.875 1.125 0\n", "\n1 1 1.9 0\n"))
+    return src
+
+
+def case_threads(args):
+    """--threads N is --param threads=N; the result does not depend on it."""
+    src = os.path.join(args.out, "threads_box.mesh")
+    write_jittered_box(src, 6, 2.0, 0.35, 3)
+    outputs = {}
+    for label, extra in (("default", []), ("t1", ["--threads", "1"]), ("t2", ["--threads", "2"]),
+                         ("t3", ["--threads=3"]), ("all", ["--threads", "0"]), ("p2", ["--param", "threads=2"]),
+                         ("t3p1", ["--threads", "3", "--param", "threads=1"])):
+        dst = os.path.join(args.out, "threads_%s.mesh" % label)
+        code, out, err = run(args.bodt, "improve", src, dst, "--iterations", "6", "--json", *extra)
+        if not check(code == 0, "improve %s: exit %d %r" % (" ".join(extra), code, err)):
+            continue
+        j = json.loads(out)
+        want = {"default": 1, "t1": 1, "t2": 2, "t3": 3, "all": 0, "p2": 2, "t3p1": 1}[label]
+        check(j["threads"] == want and j["parameters"]["threads"] == want,
+              "%s: threads %r / %r, expected %d" % (label, j["threads"], j["parameters"]["threads"], want))
+        outputs[label] = open(dst, "rb").read()
+    base = outputs.get("default")
+    check(base is not None and len(outputs) == 7, "not every run wrote its output")
+    for label, data in outputs.items():
+        check(data == base, "--threads changed the result: %s differs from the default run" % label)
+    code, out, err = run(args.bodt, "improve", src, os.path.join(args.out, "threads_v.mesh"), "--threads", "2",
+                         "--verbose", "--iterations", "1")
+    check(code == 0 and "  threads = 2\n" in err, "--verbose does not show threads = 2: %r" % err)
+    code, page, err = run(args.bodt, "help", "improve")
+    check("--threads N" in page, "help improve does not document --threads")
+
+
+def case_improve_json(args):
+    """improve --json: one JSON object whose figures agree with bodt quality
+    --json of the input and of the written file, and with its own steps."""
+    src = pushed_box2(args, "json_pushed.mesh")
+    dst = os.path.join(args.out, "json_out.mesh")
+    if os.path.exists(dst):
+        os.remove(dst)
+    code, out, err = run(args.bodt, "improve", src, dst, "--iterations", "8", "--ops", "flip,insert", "--json")
+    check(code == 0, "improve --json: exit %d %r" % (code, err))
+    lines = [l for l in out.splitlines() if l.strip()]
+    check(len(lines) == 1, "improve --json printed %d lines: %r" % (len(lines), out))
+    try:
+        j = json.loads(out)
+    except ValueError as e:
+        check(False, "improve --json is not JSON (%s): %r" % (e, out))
+        return
+    for key in ("version", "input", "output", "mode", "ops", "max_steps", "threads", "options", "parameters",
+                "steps", "converged", "flips", "vertices_inserted", "edges_collapsed", "seconds", "quality_before",
+                "quality_after", "per_step", "keep_surface", "reference", "report"):
+        check(key in j, "improve --json lacks %s" % key)
+    if FAILURES:
+        return
+    check(j["input"] == src and j["output"] == dst and j["mode"] == "bodt" and j["ops"] == "flip,insert",
+          "input/output/mode/ops: %r" % ({k: j[k] for k in ("input", "output", "mode", "ops")},))
+    check(j["max_steps"] == 8 and j["options"] == ["--iterations 8", "--ops flip,insert"],
+          "max_steps/options: %r %r" % (j["max_steps"], j["options"]))
+    check(j["reference"] is None and j["report"] is None and j["keep_surface"] is False, "reference/report")
+    check(len(j["parameters"]) == 23 and j["parameters"]["tolerance"] == 1e-6 and j["parameters"]["ops"] == 6,
+          "parameters: %r" % j["parameters"])
+    steps = j["per_step"]
+    check(len(steps) == j["steps"] and 1 <= j["steps"] <= 8, "%d per-step records, steps %r" % (len(steps), j["steps"]))
+    check(j["converged"] == (j["steps"] < 8), "converged %r with %d of 8 steps" % (j["converged"], j["steps"]))
+    check([s["step"] for s in steps] == list(range(1, len(steps) + 1)), "step numbers %r" % [s["step"] for s in steps])
+    for key, total in (("flips", "flips"), ("vertices_inserted", "vertices_inserted"),
+                       ("edges_collapsed", "edges_collapsed")):
+        check(sum(s[key] for s in steps) == j[total], "per-step %s sum to %d, total %d" %
+              (key, sum(s[key] for s in steps), j[total]))
+    check(j["flips"] > 0, "no flips on the pushed box: %r" % j["flips"])
+    for s_ in steps:
+        for key in ("seconds", "min_dihedral", "max_dihedral", "min_stretch", "vertices_moved", "moves_rejected",
+                    "moves_shortened", "not_positive_definite", "max_move"):
+            check(key in s_, "per_step lacks %s" % key)
+    t = j["seconds"]
+    check(all(t[k] >= 0 for k in ("reading", "setting_up", "steps", "writing", "total")) and
+          t["total"] >= t["reading"] + t["setting_up"] + t["steps"] + t["writing"] - 1e-3 and
+          abs(sum(s_["seconds"] for s_ in steps) - t["steps"]) <= 0.05 + 0.2 * t["steps"],
+          "seconds %r" % t)
+    before, after = quality_json(args, src), quality_json(args, dst)
+    if before is None or after is None:
+        return
+    for name, mine, file_q in (("before", j["quality_before"], before), ("after", j["quality_after"], after)):
+        for key in ("vertices", "tets", "boundary_faces", "inverted", "unused_vertices"):
+            check(mine[key] == file_q[key], "quality_%s %s: %r, the file's %r" % (name, key, mine[key], file_q[key]))
+        for key in ("min_dihedral", "max_dihedral", "mean_dihedral", "min_stretch", "mean_stretch", "volume"):
+            check(abs(mine[key] - file_q[key]) <= 2e-6, "quality_%s %s: %r, the file's %r" %
+                  (name, key, mine[key], file_q[key]))
+    last = steps[-1]
+    check(abs(last["min_dihedral"] - after["min_dihedral"]) <= 1e-6 and
+          abs(last["max_dihedral"] - after["max_dihedral"]) <= 1e-6 and
+          abs(last["min_stretch"] - after["min_stretch"]) <= 1e-6,
+          "the last step's figures %r are not the written file's %r" % (last, after))
+    # --quiet leaves the JSON (it is the command's answer) and silences the rest
+    code, out, err = run(args.bodt, "improve", src, dst, "--json", "-q")
+    check(code == 0 and json.loads(out)["output"] == dst and err == "", "--json -q: %d %r %r" % (code, out, err))
+
+
+def case_inverted_message(args):
+    """A mesh with an inverted tet: improve refuses it and points to --mode
+    phased (not to the C flag); phased takes it; quality counts it."""
+    pts, tets, _, _ = read_medit_full(os.path.join(args.data, "box2.mesh"))
+    bad = os.path.join(args.out, "inverted_box.mesh")
+    # the side x = 2 moved to x = 1.1, past the centre vertex (x = 1.25)
+    moved = [(1.1 if p[0] == 2.0 else p[0], p[1], p[2]) for p in pts]
+    write_medit(bad, moved, tets)
+    n_inv = sum(1 for t in tets if dot(sub(moved[t[1]], moved[t[0]]),
+                                       cross(sub(moved[t[2]], moved[t[0]]), sub(moved[t[3]], moved[t[0]]))) < 0)
+    check(0 < n_inv < len(tets) / 2, "%d tets inverted" % n_inv)
+    dst = os.path.join(args.out, "inverted_out.mesh")
+    code, out, err = run(args.bodt, "improve", bad, dst)
+    check(code == 2, "improve of a mesh with inverted tets: exit %d" % code)
+    check("inverted" in err and "--mode phased" in err, "the message does not point to --mode phased: %r" % err)
+    check("BODT_CREATE" not in err, "the message names the C flag: %r" % err)
+    check(bad in err, "the message does not name the file: %r" % err)
+    q = quality_json(args, bad)
+    if q is not None:
+        check(q["inverted"] == n_inv, "quality counts %r inverted tets, expected %d" % (q["inverted"], n_inv))
+    code, out, err = run(args.bodt, "improve", bad, dst, "--mode", "phased", "-q")
+    check(code == 0, "--mode phased on it: exit %d %r" % (code, err))
+    q = quality_json(args, dst)
+    if q is not None:
+        check(q["inverted"] == 0, "phased left %r inverted tets" % q["inverted"])
+
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bodt", required=True)
@@ -1099,7 +1401,8 @@ def main():
     ap.add_argument("case", choices=["quality_json", "improve", "improve_ops", "exit_codes", "improve_surface",
                                      "surface_without_tetgen", "improve_opt_weighted", "improve_phased",
                                      "compare", "convert", "convert_formats", "param", "progress", "histogram",
-                                     "help", "report"])
+                                     "help", "report", "early_output", "threads", "improve_json",
+                                     "inverted_message"])
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     globals()["case_" + args.case](args)
