@@ -17,6 +17,8 @@ packages=(
   python3           # tests may parse JSON with /usr/bin/python3
   python3-numpy     # the Python package (bindings/python) and its tests
   python3-cffi      # the test that loads the installed bodt.h with cffi
+  python3-gmsh      # python.gmsh_files: Gmsh itself opens the .msh files bodt writes
+  python3-meshio    # python.gmsh_files: meshio reads the .msh files bodt writes
   abigail-tools     # abidiff: the ABI check against tests/consumers/libbodt.abi
   chromium          # renders the HTML report headless in its test (screenshot)
   clang             # clang++ for the libFuzzer targets of the readers (tests/fuzz)

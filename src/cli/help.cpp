@@ -32,6 +32,8 @@ const char* const kFiles =
     "          surfaces face markers; without physical volumes, the entity\n"
     "          tags of several volumes are their regions, and without\n"
     "          physical surfaces, those of several surfaces their markers.\n"
+    "          A .msh is written back with its physical names and tags and\n"
+    "          its entities, each element in the entity it came from.\n"
     "  .vtu    VTK XML unstructured grid (vtu), for ParaView; a write adds per-tet\n"
     "          region, min and max dihedral angle, stretch and volume.\n"
     "  .vtk    VTK legacy unstructured grid (vtk), ASCII or binary, up to\n"
