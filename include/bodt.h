@@ -775,8 +775,10 @@ enum bodt_format {
      * entity, each element in the entity it came from or lies in), also
      * after steps changed its connectivity; any other mesh gets an entity
      * and a named physical group per region, marker, edge ref and the
-     * fixed vertices.  Gmsh and meshio read every variant written.  Writes
-     * 4.1 ASCII; the next three write the other variants. */
+     * fixed vertices.  In a file with physical groups, elements of none
+     * are in physical group 0.  Gmsh and meshio read every variant
+     * written.  Writes 4.1 ASCII; the next three write the other
+     * variants. */
     BODT_FORMAT_GMSH = 4,
     BODT_FORMAT_GMSH_BINARY = 5,    /* writes 4.1 binary                      */
     BODT_FORMAT_GMSH22 = 6,         /* writes 2.2 ASCII                       */
