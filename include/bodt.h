@@ -776,9 +776,17 @@ enum bodt_format {
     /* .msh, Gmsh: reads 2.2 and 4.1, ASCII and binary; physical tags of
      * volumes are region ids (without any physical volume, the tets of
      * several volumes take their volume's entity tag), of surfaces face
-     * markers, of curves feature edge refs (line elements are feature
-     * edges), of points fixed vertices.  No vertex refs or corners.  Writes 4.1 ASCII; the next
-     * three write the other variants. */
+     * markers (likewise), of curves feature edge refs (line elements are
+     * feature edges), of points fixed vertices.  No vertex refs or
+     * corners.  A mesh read from a .msh is written back with the file's
+     * physical names and tags and its entities (an element block per
+     * entity, each element in the entity it came from or lies in), also
+     * after steps changed its connectivity; any other mesh gets an entity
+     * and a named physical group per region, marker, edge ref and the
+     * fixed vertices.  In a file with physical groups, elements of none
+     * are in physical group 0.  Gmsh and meshio read every variant
+     * written.  Writes 4.1 ASCII; the next three write the other
+     * variants. */
     BODT_FORMAT_GMSH = 4,
     BODT_FORMAT_GMSH_BINARY = 5,    /* writes 4.1 binary                      */
     BODT_FORMAT_GMSH22 = 6,         /* writes 2.2 ASCII                       */

@@ -18,6 +18,7 @@ packages=(
   python3           # tests may parse JSON with /usr/bin/python3
   python3-numpy     # the Python package (bindings/python) and its tests
   python3-cffi      # the tests of bodt.cffi_cdef() and the README's cffi recipe
+  python3-gmsh      # python.gmsh_files: Gmsh itself opens the .msh files bodt writes
   python3-meshio    # meshio reads the files we write, writes the ones we read; bodt.from_meshio / to_meshio
   python3-venv      # the test of `pip install ./bindings/python` (a venv, with pip from python3-pip-whl)
   calculix-ccx      # interop_calculix: CalculiX solves a bar from our .inp

@@ -35,11 +35,33 @@
 //                   with and without a physical tag are feature edges (ref
 //                   the tag, else 0); a 2.2 line listed for two physical
 //                   groups is one edge with the first group's tag
-//   malformed       many corruptions of those files: each an Error with
-//                   BODT_ERR_IO naming the file and a line or byte offset
+//   model           what the reader keeps beyond the arrays (GmshModel):
+//                   box41.msh's names, 45 entities with physical tags,
+//                   bounding entities and boxes, the entity of each
+//                   element and node; box22.msh's entities from its
+//                   elements; box_nophysical41.msh's entity tags as values
+//   order           a hand-written 4.1 file with node tags 1..5 in blocks
+//                   out of order (vertex i is node i + 1, base 1), element
+//                   tags out of order (arrays in tag order), an entity tag
+//                   0 and an entity only a node block and elements name;
+//                   written in the four variants and read back the same
+//   layout_*        the writer's entity recovery (gmsh_layout.hpp): as read,
+//                   every element and node where the file had it; after a
+//                   simulated step (edge splits with made vertices and
+//                   parents, tets from their origins, new markers, refs,
+//                   regions and fixed vertices) each element in the entity
+//                   it lies in or a new one with a named physical group;
+//                   without physical groups, entity tags as values and
+//                   physical tag 0 once a group exists; a single surface
+//                   without a physical group gets its unmarked faces back
+//   malformed       many corruptions of those files (also of $Entities and
+//                   $PhysicalNames): each an Error with BODT_ERR_IO naming
+//                   the file and a line or byte offset
 //   bad_write       the writer refuses a bad version, bad indices and edge
 //                   refs that do not match the edges in number
 #include "io/gmsh.hpp"
+#include "io/gmsh_layout.hpp"
+#include "io/gmsh_model.hpp"
 
 #include "bodt.h"
 #include "common/error.hpp"
@@ -47,6 +69,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -405,6 +428,369 @@ void test_sparse_tags(void** /*state*/) {
     }
 }
 
+// ---------------------------------------------------------------- the model
+
+// The entity (dim, tag) of a model, or null.
+const bodt::GmshEntity* model_entity(const bodt::GmshModel& m, int dim, int32_t tag) {
+    for (const bodt::GmshEntity& e : m.entities)
+        if (e.dim == dim && e.tag == tag) return &e;
+    return nullptr;
+}
+
+// The tag of model entity index e (dim checked).
+int32_t tag_of(const bodt::GmshModel& m, int32_t e, int dim) {
+    if (e < 0 || static_cast<size_t>(e) >= m.entities.size() || m.entities[static_cast<size_t>(e)].dim != dim) return -1;
+    return m.entities[static_cast<size_t>(e)].tag;
+}
+
+void test_model(void** /*state*/) {
+    {
+        const char* what = "box41.msh's model";
+        const MeshData d = bodt::read_gmsh(data("box41.msh"));
+        CHECK(d.gmsh != nullptr, "no model");
+        const bodt::GmshModel& m = *d.gmsh;
+        CHECK(m.names.size() == 5 && m.names[0].dim == 0 && m.names[0].tag == 30 && m.names[0].name == "corner" &&
+                  m.names[4].dim == 3 && m.names[4].tag == 2 && m.names[4].name == "right",
+              "physical names");
+        int per_dim[4] = {0, 0, 0, 0};
+        for (const bodt::GmshEntity& e : m.entities) ++per_dim[e.dim];
+        CHECK(per_dim[0] == 12 && per_dim[1] == 20 && per_dim[2] == 11 && per_dim[3] == 2, "entities %d %d %d %d",
+              per_dim[0], per_dim[1], per_dim[2], per_dim[3]);
+        const bodt::GmshEntity* s5 = model_entity(m, 2, 5);
+        CHECK(s5 && s5->physicals == std::vector<int32_t>{10} && s5->key == 10 &&
+                  s5->bounding == (std::vector<int32_t>{4, 11, -8, -9}) && s5->has_box && s5->box[5] < 1e-6,
+              "surface 5");
+        const bodt::GmshEntity* p2 = model_entity(m, 0, 2);
+        CHECK(p2 && p2->physicals == std::vector<int32_t>{30} && p2->box[0] == 0 && p2->box[3] == 0, "point 2");
+        CHECK(!m.entity_keyed[2] && !m.entity_keyed[3], "entity tags taken as values");
+        CHECK(m.tet_entity.size() == 48, "%zu tet entities", m.tet_entity.size());
+        for (size_t t = 0; t < 48; ++t)
+            CHECK(tag_of(m, m.tet_entity[t], 3) == d.regions[t], "tet %zu in volume %d, region %d", t,
+                  tag_of(m, m.tet_entity[t], 3), d.regions[t]);
+        CHECK(m.triangle_entity.size() == 8 && m.triangles.size() == 24, "%zu triangles", m.triangle_entity.size());
+        for (size_t f = 0; f < 8; ++f) {
+            const int32_t s = tag_of(m, m.triangle_entity[f], 2);
+            for (int k = 0; k < 3; ++k) {
+                const double x = d.xyz[3 * static_cast<size_t>(m.triangles[3 * f + k])];
+                CHECK(s == 5 ? x <= 1 : s == 10 && x >= 1, "triangle %zu in surface %d has x = %g", f, s, x);
+            }
+        }
+        CHECK(m.lines == (std::vector<int32_t>{1, 0}) && tag_of(m, m.line_entity[0], 1) == 1, "the line on curve 1");
+        CHECK(m.points == std::vector<int32_t>{1} && tag_of(m, m.point_entity[0], 0) == 2, "the point");
+        // nodes: tag 2 (the origin) on point 2, tag 17 (0.5, 0.5, 0) on surface 5, tag 23 on surface 11
+        CHECK(m.node_entity.size() == 23 && tag_of(m, m.node_entity[1], 0) == 2 &&
+                  tag_of(m, m.node_entity[16], 2) == 5 && tag_of(m, m.node_entity[22], 2) == 11,
+              "node entities");
+    }
+    {
+        const char* what = "box22.msh's model";
+        const MeshData d = bodt::read_gmsh(data("box22.msh"));
+        const bodt::GmshModel& m = *d.gmsh;
+        CHECK(m.names.size() == 5 && m.node_entity.empty(), "names or node entities");
+        // 2.2: the entities that hold elements, with the physical tags of their elements
+        CHECK(m.entities.size() == 6, "%zu entities", m.entities.size());
+        const bodt::GmshEntity* s10 = model_entity(m, 2, 10);
+        CHECK(s10 && s10->physicals == std::vector<int32_t>{10} && !s10->has_box, "surface 10");
+        CHECK(model_entity(m, 3, 1) && model_entity(m, 3, 1)->physicals == std::vector<int32_t>{1}, "volume 1");
+    }
+    {
+        const char* what = "box_nophysical41.msh's model";
+        const MeshData d = bodt::read_gmsh(data("box_nophysical41.msh"));
+        const bodt::GmshModel& m = *d.gmsh;
+        CHECK(m.names.empty() && m.entity_keyed[3] && m.entity_keyed[2] && !m.entity_keyed[1], "entity keyed");
+        for (const bodt::GmshEntity& e : m.entities)
+            CHECK(e.physicals.empty() && e.key == (e.dim >= 2 ? e.tag : 0), "entity (%d, %d) key %d", e.dim, e.tag,
+                  e.key);
+        CHECK(m.points.size() == 12 && m.triangle_entity.size() == 44 && m.line_entity.size() == 20,
+              "%zu points, %zu triangles, %zu lines", m.points.size(), m.triangle_entity.size(),
+              m.line_entity.size());
+        CHECK(d.fixed.empty(), "points without a physical group fixed");
+    }
+}
+
+// Node tags 1..5 in blocks out of order, element tags out of order, a
+// point entity with tag 0 in $Entities (no entity), and a node block and an
+// element block on an entity $Entities does not list.
+const char* kShuffled41 =
+    "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+    "$PhysicalNames\n2\n3 4 \"a name with spaces\"\n2 6 \"\"\n$EndPhysicalNames\n"
+    "$Entities\n1 0 1 1\n"
+    "0 9 9 9 1 1\n"
+    "3 0 0 0 1 1 1 1 6 0\n"
+    "2 0 0 0 1 1 1 1 4 1 3\n"
+    "$EndEntities\n"
+    "$Nodes\n3 5 1 5\n"
+    "2 3 0 2\n4\n2\n0 0 1\n1 0 0\n"
+    "2 7 0 1\n5\n1 1 1\n"
+    "3 2 0 2\n1\n3\n0 0 0\n0 1 0\n"
+    "$EndNodes\n"
+    "$Elements\n4 5 1 9\n"
+    "2 3 2 1\n8 1 2 3\n"
+    "0 0 15 1\n1 5\n"
+    "3 2 4 2\n9 1 2 3 5\n2 1 2 3 4\n"
+    "2 7 2 1\n5 2 3 4\n"
+    "$EndElements\n";
+
+void test_order(void** /*state*/) {
+    const char* what = "shuffled 4.1";
+    const std::string path = scratch("shuffled41.msh");
+    spit(path, kShuffled41);
+    MeshData d;
+    try {
+        d = bodt::read_gmsh(path);
+    } catch (const Error& e) {
+        CHECK(false, "%s", e.what());
+    }
+    // vertex i is the node tagged i + 1, whatever block holds it
+    CHECK(d.base == 1, "base %d", d.base);
+    CHECK(d.xyz == (std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1}), "coordinates");
+    // elements by tag: tet 2 before tet 9, triangle 5 (surface 7) before 8 (surface 3)
+    CHECK(d.tets == (std::vector<int32_t>{1, 2, 3, 4, 1, 2, 3, 5}), "tets");
+    CHECK(d.regions == (std::vector<int32_t>{4, 4}), "regions");
+    CHECK(d.triangles == (std::vector<int32_t>{1, 2, 3}) && d.tri_markers == std::vector<int32_t>{6},
+          "only the physical triangle");
+    CHECK(d.fixed.empty(), "the point without an entity fixes nothing");
+    const bodt::GmshModel& m = *d.gmsh;
+    CHECK(m.names.size() == 2 && m.names[0].name == "a name with spaces" && m.names[1].name.empty(), "names");
+    CHECK(m.triangles == (std::vector<int32_t>{1, 2, 3, 0, 1, 2}), "model triangles in tag order");
+    CHECK(tag_of(m, m.triangle_entity[0], 2) == 7 && tag_of(m, m.triangle_entity[1], 2) == 3, "triangle entities");
+    CHECK(model_entity(m, 2, 7) && model_entity(m, 2, 7)->physicals.empty(), "the unlisted surface 7");
+    CHECK(!model_entity(m, 0, 0) && m.point_entity == std::vector<int32_t>{-1}, "entity tag 0");
+    // nodes 4 and 2 (vertices 3 and 1) on surface 3, 1 and 3 on volume 2;
+    // node 5's block is on surface 7, which only elements make an entity
+    CHECK(tag_of(m, m.node_entity[3], 2) == 3 && tag_of(m, m.node_entity[1], 2) == 3 &&
+              m.node_entity[4] == -1 && tag_of(m, m.node_entity[0], 3) == 2 && tag_of(m, m.node_entity[2], 3) == 2,
+          "node entities");
+    // written and read again: the same arrays and names
+    for (const Variant& v : kVariants) {
+        const std::string again = scratch(std::string("shuffled_again_") + v.name + ".msh");
+        bodt::write_gmsh(again, d, v.version, v.binary);
+        const MeshData back = bodt::read_gmsh(again);
+        CHECK(back.xyz == d.xyz && back.tets == d.tets && back.regions == d.regions && back.triangles == d.triangles &&
+                  back.tri_markers == d.tri_markers,
+              "%s: arrays differ", v.name);
+        CHECK(back.gmsh->names.size() == 2 && back.gmsh->names[0].name == "a name with spaces", "%s: names", v.name);
+    }
+}
+
+// ---------------------------------------------------------------- layout
+
+// The layout entity (dim, tag): its index, -1 if none.
+int32_t layout_index(const bodt::GmshLayout& l, int dim, int32_t tag) {
+    for (size_t k = 0; k < l.entities.size(); ++k)
+        if (l.entities[k].dim == dim && l.entities[k].tag == tag) return static_cast<int32_t>(k);
+    return -1;
+}
+
+// The tag of the entity element k of `dim` is in.
+int32_t placed(const bodt::GmshLayout& l, int dim, size_t k) {
+    const int32_t e = l.element_entity[dim][k];
+    return e < 0 ? -1 : l.entities[static_cast<size_t>(e)].tag;
+}
+
+const std::vector<int32_t>& physicals_of(const bodt::GmshLayout& l, int dim, int32_t tag) {
+    static const std::vector<int32_t> none{-99};
+    const int32_t k = layout_index(l, dim, tag);
+    return k < 0 ? none : l.entities[static_cast<size_t>(k)].physicals;
+}
+
+bool named(const bodt::GmshLayout& l, int dim, int32_t tag, const std::string& name) {
+    for (const bodt::GmshPhysicalName& n : l.names)
+        if (n.dim == dim && n.tag == tag) return n.name == name;
+    return false;
+}
+
+// A vertex made by a step, with its parents (1-based tags, as in box41.msh).
+int32_t add_made_vertex(MeshData& d, std::initializer_list<std::pair<int32_t, double>> parents) {
+    MeshData::Origins& o = d.origins;
+    if (o.parent_offsets.empty()) {
+        o.input_vertices = static_cast<int32_t>(d.xyz.size() / 3);
+        o.parent_offsets.push_back(0);
+    }
+    double p[3] = {0, 0, 0};
+    for (const auto& [tag, w] : parents) {
+        o.parents.push_back(tag - 1);
+        o.weights.push_back(w);
+        for (int k = 0; k < 3; ++k) p[k] += w * d.xyz[3 * static_cast<size_t>(tag - 1) + k];
+    }
+    o.parent_offsets.push_back(static_cast<int64_t>(o.parents.size()));
+    d.xyz.insert(d.xyz.end(), p, p + 3);
+    return static_cast<int32_t>(d.xyz.size() / 3);  // its tag (base 1)
+}
+
+// Replaces the triangle (a, b, c) (in any order, tags) by `by`.
+void replace_triangle(MeshData& d, std::array<int32_t, 3> old, std::vector<std::array<int32_t, 4>> by) {
+    std::sort(old.begin(), old.end());
+    for (size_t f = 0; f < d.tri_markers.size(); ++f) {
+        std::array<int32_t, 3> t{d.triangles[3 * f], d.triangles[3 * f + 1], d.triangles[3 * f + 2]};
+        std::sort(t.begin(), t.end());
+        if (t != old) continue;
+        d.triangles.erase(d.triangles.begin() + static_cast<std::ptrdiff_t>(3 * f),
+                          d.triangles.begin() + static_cast<std::ptrdiff_t>(3 * f + 3));
+        d.tri_markers.erase(d.tri_markers.begin() + static_cast<std::ptrdiff_t>(f));
+        for (const auto& n : by) {
+            d.triangles.insert(d.triangles.end(), {n[0], n[1], n[2]});
+            d.tri_markers.push_back(n[3]);
+        }
+        return;
+    }
+    fail_msg("no triangle %d %d %d", old[0], old[1], old[2]);
+}
+
+void test_layout_as_read(void** /*state*/) {
+    const char* what = "layout of box41.msh as read";
+    const MeshData d = bodt::read_gmsh(data("box41.msh"));
+    const bodt::GmshLayout l = bodt::layout_gmsh(d);
+    CHECK(l.entities.size() == d.gmsh->entities.size(), "%zu entities", l.entities.size());
+    for (size_t k = 0; k < l.entities.size(); ++k) {
+        const bodt::GmshEntity& m = d.gmsh->entities[k];
+        const bodt::GmshLayout::Entity& e = l.entities[k];
+        CHECK(e.dim == m.dim && e.tag == m.tag && e.physicals == m.physicals && e.bounding == m.bounding &&
+                  e.box == m.box,
+              "entity %zu differs from the model's", k);
+    }
+    for (size_t f = 0; f < 8; ++f)
+        CHECK(placed(l, 2, f) == tag_of(*d.gmsh, d.gmsh->triangle_entity[f], 2), "triangle %zu", f);
+    for (size_t t = 0; t < 48; ++t) CHECK(placed(l, 3, t) == d.regions[t], "tet %zu", t);
+    CHECK(placed(l, 1, 0) == 1 && l.points == std::vector<int32_t>{1} && placed(l, 0, 0) == 2, "line and point");
+    for (size_t v = 0; v < 23; ++v)
+        CHECK(l.node_entity[v] == d.gmsh->node_entity[v], "node %zu moved to another entity", v + 1);
+    CHECK(l.names.size() == 5 && named(l, 2, 10, "bottom"), "names");
+}
+
+void test_layout_after_steps(void** /*state*/) {
+    const char* what = "layout of box41.msh after steps";
+    const MeshData in = bodt::read_gmsh(data("box41.msh"));
+    MeshData d = in;
+    // An edge split inside surface 5 (x <= 1): (2, 17) at its middle.
+    const int32_t m5 = add_made_vertex(d, {{2, 0.5}, {17, 0.5}});
+    replace_triangle(d, {2, 4, 17}, {{2, 4, m5, 10}, {m5, 4, 17, 10}});
+    replace_triangle(d, {5, 2, 17}, {{5, 2, m5, 10}, {5, m5, 17, 10}});
+    // A vertex made in surface 10 (x >= 1), then a triangle on the curve
+    // x = 1 between the two surfaces with it: it lies on 10.
+    const int32_t m10 = add_made_vertex(d, {{12, 0.25}, {22, 0.75}});
+    replace_triangle(d, {5, 8, 22}, {{5, 8, m10, 10}, {5, m10, 22, 10}});
+    // The feature edge (2, 1) split; an edge with a new ref; one with none.
+    const int32_t m1 = add_made_vertex(d, {{1, 0.5}, {2, 0.5}});
+    d.feature_edges = {2, m1, m1, 1, 4, 8, 8, 7};
+    d.edge_refs = {20, 20, 99, 0};
+    // A face with a new marker, an unmarked face.
+    d.triangles.insert(d.triangles.end(), {1, 3, 13, 3, 4, 13});
+    d.tri_markers.insert(d.tri_markers.end(), {44, 0});
+    // Tets (geometry aside): from their input tets, one moved to region 2,
+    // one in a new region 7.
+    const size_t nt = d.tets.size() / 4;
+    for (size_t t = 0; t < nt; ++t) d.origins.tet_origins.push_back(static_cast<int32_t>(nt - 1 - t));
+    std::vector<int32_t> regions(nt);
+    for (size_t t = 0; t < nt; ++t) regions[t] = in.regions[nt - 1 - t];
+    d.tets.clear();
+    for (size_t t = 0; t < nt; ++t)
+        d.tets.insert(d.tets.end(), in.tets.begin() + 4 * static_cast<std::ptrdiff_t>(nt - 1 - t),
+                      in.tets.begin() + 4 * static_cast<std::ptrdiff_t>(nt - t));
+    const size_t in_one = static_cast<size_t>(std::find(regions.begin(), regions.end(), 1) - regions.begin());
+    regions[in_one] = 2;
+    regions[0] = 7;
+    d.regions = regions;
+    // The origin still fixed; vertex 4 fixed by the caller.
+    d.fixed = {2, 4};
+
+    const bodt::GmshLayout l = bodt::layout_gmsh(d);
+    // every entity of the model kept; new: a point, two curves, a surface, a volume
+    int per_dim[4] = {0, 0, 0, 0};
+    for (const auto& e : l.entities) ++per_dim[e.dim];
+    CHECK(per_dim[0] == 13 && per_dim[1] == 22 && per_dim[2] == 12 && per_dim[3] == 3, "entities %d %d %d %d",
+          per_dim[0], per_dim[1], per_dim[2], per_dim[3]);
+    const size_t nf = d.tri_markers.size();
+    for (size_t f = 0; f < nf; ++f) {
+        const int32_t s = placed(l, 2, f);
+        if (d.tri_markers[f] == 44) {
+            CHECK(s == 44 && physicals_of(l, 2, 44) == std::vector<int32_t>{44} && named(l, 2, 44, "marker 44"),
+                  "the new marker's surface is %d", s);
+            continue;
+        }
+        if (d.tri_markers[f] == 0) {
+            CHECK(s == -1, "an unmarked face written in surface %d", s);
+            continue;
+        }
+        bool has_m10 = false, right = false, left = false;
+        for (int k = 0; k < 3; ++k) {
+            const int32_t v = d.triangles[3 * f + k];
+            has_m10 = has_m10 || v == m10;
+            right = right || d.xyz[3 * static_cast<size_t>(v - 1)] > 1;
+            left = left || d.xyz[3 * static_cast<size_t>(v - 1)] < 1;
+        }
+        CHECK(s == (right || has_m10 ? 10 : 5) && !(left && right), "triangle %zu in surface %d", f, s);
+    }
+    CHECK(placed(l, 1, 0) == 1 && placed(l, 1, 1) == 1, "the split line is not on curve 1");
+    // new entities take their value as tag when it is free, else the next free one
+    CHECK(placed(l, 1, 2) == 99 && physicals_of(l, 1, 99) == std::vector<int32_t>{99} && named(l, 1, 99, "edge ref 99"),
+          "the new ref's curve");
+    CHECK(placed(l, 1, 3) == 100 && physicals_of(l, 1, 100) == std::vector<int32_t>{0}, "the ref-0 curve");
+    for (size_t t = 0; t < nt; ++t) {
+        const int32_t want = t == in_one ? 2 : regions[t];
+        CHECK(placed(l, 3, t) == want, "tet %zu in volume %d, not %d", t, placed(l, 3, t), want);
+    }
+    CHECK(physicals_of(l, 3, 7) == std::vector<int32_t>{7} && named(l, 3, 7, "region 7"), "the new region's volume");
+    CHECK(l.points == (std::vector<int32_t>{1, 3}) && placed(l, 0, 0) == 2 && placed(l, 0, 1) == 13 &&
+              physicals_of(l, 0, 13) == std::vector<int32_t>{31} && named(l, 0, 31, "fixed vertices"),
+          "points");
+    // nodes: made vertices on the lowest entity that holds them
+    const auto node_tag = [&](int32_t v) { return l.entities[static_cast<size_t>(l.node_entity[v - 1])]; };
+    CHECK(node_tag(m1).dim == 1 && node_tag(m1).tag == 1, "the made vertex on curve 1");
+    CHECK(node_tag(m5).dim == 2 && node_tag(m5).tag == 5, "the made vertex in surface 5");
+    CHECK(node_tag(m10).dim == 2 && node_tag(m10).tag == 10, "the made vertex in surface 10");
+    CHECK(node_tag(17).dim == 2 && node_tag(17).tag == 5 && node_tag(2).dim == 0, "input vertices");
+    // without the model: an entity per value
+    MeshData plain = d;
+    plain.gmsh = nullptr;
+    const bodt::GmshLayout p = bodt::layout_gmsh(plain);
+    CHECK(p.names.size() == 8 && named(p, 3, 7, "region 7") && named(p, 2, 10, "marker 10") &&
+              named(p, 0, 1, "fixed vertices"),
+          "%zu names", p.names.size());
+    CHECK(layout_index(p, 3, 1) >= 0 && layout_index(p, 3, 2) >= 0 && layout_index(p, 3, 7) >= 0 &&
+              layout_index(p, 2, 44) >= 0 && layout_index(p, 1, 20) >= 0,
+          "entity tags are not the values");
+}
+
+// A model that took entity tags as regions and markers; points and curves
+// without physical groups; a single unmarked surface.
+void test_layout_without_groups(void** /*state*/) {
+    {
+        const char* what = "layout of box_nophysical41.msh";
+        MeshData d = bodt::read_gmsh(data("box_nophysical41.msh"));
+        bodt::GmshLayout l = bodt::layout_gmsh(d);
+        for (const auto& e : l.entities) CHECK(e.physicals.empty(), "entity (%d, %d) has a physical tag", e.dim, e.tag);
+        CHECK(l.names.empty() && l.points.size() == 12, "names or points");
+        for (size_t f = 0; f < d.tri_markers.size(); ++f) CHECK(placed(l, 2, f) == d.tri_markers[f], "triangle %zu", f);
+        // a new marker is a new surface of that tag; a fixed vertex brings
+        // a physical group, and then every entity with elements gets 0
+        d.tri_markers[0] = 50;
+        d.fixed = {d.tets[0]};
+        l = bodt::layout_gmsh(d);
+        CHECK(placed(l, 2, 0) == 50 && physicals_of(l, 2, 50) == std::vector<int32_t>{0}, "the new marker's surface");
+        CHECK(physicals_of(l, 3, 1) == std::vector<int32_t>{0} && physicals_of(l, 1, 1) == std::vector<int32_t>{0} &&
+                  named(l, 0, 1, "fixed vertices") && l.names.size() == 1,
+              "physical tags");
+    }
+    {
+        const char* what = "a single surface without a physical group";
+        const std::string path = scratch("one_surface.msh");
+        spit(path,
+             "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+             "$Entities\n0 0 1 1\n4 0 0 0 1 1 1 0 0\n1 0 0 0 1 1 1 0 1 4\n$EndEntities\n"
+             "$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n"
+             "$Elements\n2 5 1 5\n2 4 2 4\n1 1 3 2\n2 1 2 4\n3 2 3 4\n4 1 4 3\n3 1 4 1\n5 1 2 3 4\n$EndElements\n");
+        MeshData d = bodt::read_gmsh(path);
+        CHECK(d.triangles.empty(), "a single surface marks faces");
+        // the faces as the C API gives them: all, marker 0
+        d.triangles = {1, 3, 2, 1, 2, 4, 2, 3, 4, 1, 4, 3};
+        d.tri_markers.assign(4, 0);
+        const bodt::GmshLayout l = bodt::layout_gmsh(d);
+        for (size_t f = 0; f < 4; ++f) CHECK(placed(l, 2, f) == 4, "face %zu in surface %d", f, placed(l, 2, f));
+        CHECK(l.names.empty() && physicals_of(l, 2, 4).empty(), "physical groups");
+    }
+}
+
 // ---------------------------------------------------------------- malformed
 
 // `path` must fail to read with BODT_ERR_IO and a message naming the path and
@@ -526,6 +912,26 @@ void test_malformed(void** /*state*/) {
     add("line_physical_tag_word22", replaced(a22, "\n2 1 2 20 1 2 1\n", "\n2 1 2 x20 1 2 1\n"));
     add("curve_physical_tag_huge41", replaced(a41, "1.0000001 1 20 2 2 -1", "1.0000001 1 4294967316 2 2 -1"));
     add("curve_physical_count_huge41", replaced(a41, "1.0000001 1 20 2 2 -1", "1.0000001 999999999 20 2 2 -1"));
+    add("curve_bounding_count_huge41", replaced(a41, "1.0000001 1 20 2 2 -1", "1.0000001 1 20 2000000000 2 -1"));
+    add("curve_bounding_tag_word41", replaced(a41, "1.0000001 1 20 2 2 -1", "1.0000001 1 20 2 2 x1"));
+    add("entity_tag_word41", replaced(a41, "\n1 -1e-07 -1e-07", "\nx -1e-07 -1e-07"));
+    add("entity_box_word41", replaced(a41, "\n1 -1e-07 -1e-07", "\n1 -1e-07 y"));
+    add("entity_twice41", replaced(a41, "\n2 0 0 0 1 30 \n", "\n1 0 0 0 1 30 \n"));
+    // $PhysicalNames
+    for (const auto& [name, text] : {std::make_pair("a41", &a41), std::make_pair("b41", &b41),
+                                     std::make_pair("a22", &a22), std::make_pair("b22", &b22)}) {
+        const std::string n(name);
+        add("names_count_huge_" + n, replaced(*text, "$PhysicalNames\n5\n", "$PhysicalNames\n5000000\n"));
+        add("names_count_negative_" + n, replaced(*text, "$PhysicalNames\n5\n", "$PhysicalNames\n-5\n"));
+        add("names_count_large_" + n, replaced(*text, "$PhysicalNames\n5\n", "$PhysicalNames\n6\n"));
+        add("names_dim_" + n, replaced(*text, "\n0 30 \"corner\"", "\n4 30 \"corner\""));
+        add("names_tag_word_" + n, replaced(*text, "\n0 30 \"corner\"", "\n0 x30 \"corner\""));
+        add("names_tag_huge_" + n, replaced(*text, "\n0 30 \"corner\"", "\n0 3000000000 \"corner\""));
+        add("names_unquoted_" + n, replaced(*text, "\n0 30 \"corner\"", "\n0 30 corner"));
+        add("names_unterminated_" + n, replaced(*text, "\n0 30 \"corner\"", "\n0 30 \"corner"));
+        add("names_missing_" + n, replaced(*text, "\n0 30 \"corner\"", "\n0 30"));
+        add("names_twice_" + n, replaced(*text, "$EndPhysicalNames\n", "$EndPhysicalNames\n$PhysicalNames\n0\n$EndPhysicalNames\n"));
+    }
 
     // binary files: patch values at known offsets
     {
@@ -636,6 +1042,9 @@ int main(int argc, char** argv) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_round_trip), cmocka_unit_test(test_gmsh_files),
         cmocka_unit_test(test_entity_regions), cmocka_unit_test(test_sparse_tags),
+        cmocka_unit_test(test_model), cmocka_unit_test(test_order),
+        cmocka_unit_test(test_layout_as_read), cmocka_unit_test(test_layout_after_steps),
+        cmocka_unit_test(test_layout_without_groups),
         cmocka_unit_test(test_malformed), cmocka_unit_test(test_bad_write),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

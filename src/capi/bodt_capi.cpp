@@ -195,6 +195,27 @@ void fill_step_report(const bodt::StepReport& r, bodt_step_report* out) {
     fill_sized(out, full);
 }
 
+// The Gmsh model of the file the mesh was read from, with what the Gmsh
+// writer needs to put the elements back into its entities: the parents of
+// the made vertices and the input tet of each tet, by the caller's indices
+// (as bodt_mesh_get_vertex_parents and bodt_mesh_get_tet_origins give them).
+void add_origins(const bodt::TetMesh& mesh, const std::shared_ptr<const bodt::GmshModel>& model,
+                 bodt::MeshData& d) {
+    d.gmsh = model;
+    bodt::MeshData::Origins& o = d.origins;
+    o.input_vertices = mesh.num_input_vertices();
+    o.parent_offsets.push_back(0);
+    for (int32_t c = o.input_vertices; c < mesh.num_vertices(); ++c) {  // made vertices: the last, by caller index
+        for (const bodt::Parent& p : mesh.new_parents[static_cast<size_t>(c - o.input_vertices)]) {
+            o.parents.push_back(mesh.caller_vertex(p.vertex));
+            o.weights.push_back(p.weight);
+        }
+        o.parent_offsets.push_back(static_cast<int64_t>(o.parents.size()));
+    }
+    o.tet_origins.resize(mesh.tets.size());
+    for (int32_t t = 0; t < mesh.num_tets(); ++t) o.tet_origins[mesh.caller_tet(t)] = mesh.caller_origin(t);
+}
+
 // The mesh as the caller numbers it, for a file.
 bodt::MeshData to_mesh_data(const bodt_mesh* h) {
     const bodt::TetMesh& mesh = h->mesh;
@@ -222,6 +243,7 @@ bodt::MeshData to_mesh_data(const bodt_mesh* h) {
         d.vertex_refs.resize(mesh.points.size());
         to_caller_vertices(mesh, mesh.vertex_refs(), d.vertex_refs.data());
     }
+    if (h->gmsh_model) add_origins(mesh, h->gmsh_model, d);
     return d;
 }
 
@@ -289,6 +311,7 @@ bodt_mesh* from_mesh_data(bodt::MeshData&& d, uint32_t flags) {
         apply_feature_edges(h.get(), static_cast<int32_t>(d.feature_edges.size() / 2), d.feature_edges.data(),
                             d.edge_refs.empty() ? nullptr : d.edge_refs.data());
         if (!d.vertex_refs.empty()) apply_vertex_refs(h.get(), d.vertex_refs.data());
+        h->gmsh_model = std::move(d.gmsh);
         return h.release();
     } catch (const Error& e) {
         if (e.status() != BODT_ERR_INVALID_ARGUMENT && e.status() != BODT_ERR_BAD_MESH) throw;

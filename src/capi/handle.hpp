@@ -14,8 +14,13 @@
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <string>
+
+namespace bodt {
+struct GmshModel;
+}
 
 struct bodt_mesh {
     bodt::TetMesh mesh;
@@ -23,6 +28,10 @@ struct bodt_mesh {
     bodt::Improver improver;
     int index_base = 0;
     bool flipped = false;
+    // The structure of the Gmsh file the mesh was read from (names,
+    // entities), kept unchanged for writing it back (io/gmsh_model.hpp);
+    // null for any other source.
+    std::shared_ptr<const bodt::GmshModel> gmsh_model;
     mutable std::string last_error;
 };
 

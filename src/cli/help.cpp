@@ -33,6 +33,8 @@ const char* const kFiles =
     "          surfaces face markers; without physical volumes, the entity\n"
     "          tags of several volumes are their regions, and without\n"
     "          physical surfaces, those of several surfaces their markers.\n"
+    "          A .msh is written back with its physical names and tags and\n"
+    "          its entities, each element in the entity it came from.\n"
     "  .vtu    VTK XML unstructured grid (vtu), for ParaView; read as ParaView,\n"
     "          VTK and meshio write it (ASCII, binary or appended data, zlib-\n"
     "          compressed or not); a write adds per-tet region, min and max\n"

@@ -4,6 +4,8 @@
 // binary parts (with byte offsets).
 #include "io/gmsh.hpp"
 
+#include "io/gmsh_layout.hpp"
+#include "io/gmsh_model.hpp"
 #include "io/output_file.hpp"
 #include "io/text_scanner.hpp"
 
@@ -11,6 +13,7 @@
 #include "common/error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdarg>
 #include <charconv>
 #include <cmath>
@@ -18,6 +21,8 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <memory>
+#include <set>
 #include <string_view>
 #include <unordered_set>
 #include <utility>
@@ -215,6 +220,20 @@ public:
         mark_ = at;
     }
 
+    // A string in double quotes on the current line (no quote or line break
+    // inside), after blanks.
+    std::string quoted(const char* what) {
+        while (pos_ < buf_.size() && (buf_[pos_] == ' ' || buf_[pos_] == '\t')) ++pos_;
+        mark_ = pos_;
+        if (pos_ >= buf_.size() || buf_[pos_] != '"') fail(std::string("expected ") + what + " in double quotes");
+        const size_t close = buf_.find_first_of("\"\n", pos_ + 1);
+        if (close == std::string::npos || buf_[close] != '"')
+            fail(std::string(what) + " without its closing double quote on the line");
+        std::string s = buf_.substr(pos_ + 1, close - pos_ - 1);
+        pos_ = close + 1;
+        return s;
+    }
+
     // ---- binary
     // Checks that `n` items of `bytes_each` bytes are left.
     void need(uint64_t n, uint64_t bytes_each, const char* what) {
@@ -372,6 +391,11 @@ public:
                 read_entities();
                 in_.expect_keyword("$EndEntities");
                 entities_read_ = true;
+            } else if (token == "$PhysicalNames") {
+                if (names_read_) in_.fail("a second $PhysicalNames section");
+                read_physical_names();
+                in_.expect_keyword("$EndPhysicalNames");
+                names_read_ = true;
             } else if (token == "$MeshFormat") {
                 in_.fail("a second $MeshFormat section");
             } else {
@@ -380,13 +404,22 @@ public:
         }
         if (!nodes_read_) in_.fail("no $Nodes section");
         if (!elements_read_) in_.fail("no $Elements section");
-        if (d_.tets.empty()) in_.fail("no 4-node tetrahedra (element type 4) in the file");
-        regions_from_entities();
-        markers_from_entities();
+        if (elements_[kTetDim].entity.empty()) in_.fail("no 4-node tetrahedra (element type 4) in the file");
+        finish();
         return std::move(d_);
     }
 
 private:
+    static constexpr int kTetDim = 3;
+
+    // The elements of one dimension read so far, in file order.
+    struct Elements {
+        std::vector<int32_t> vertices;  // nodes-per-element each, from base
+        std::vector<int32_t> entity;    // an index in model_.entities, or -1
+        std::vector<int32_t> physical;  // the first physical tag, 0 for none
+        std::vector<int64_t> tag;       // the element tags (4.1)
+    };
+
     void read_format() {
         std::string_view token;
         if (!in_.next(token) || token != "$MeshFormat")
@@ -419,6 +452,18 @@ private:
         in_.expect_keyword("$EndMeshFormat");
     }
 
+    // ---- $PhysicalNames (ASCII also in binary files)
+    void read_physical_names() {
+        const int64_t n = in_.read_count("the number of physical names", 6);
+        for (int64_t k = 0; k < n; ++k) {
+            GmshPhysicalName name;
+            name.dim = static_cast<int>(in_.read_int_in("the dimension of a physical name", 0, 3));
+            name.tag = static_cast<int32_t>(in_.read_int_in("the tag of a physical name", INT32_MIN, INT32_MAX));
+            name.name = in_.quoted("a physical name");
+            model_.names.push_back(std::move(name));
+        }
+    }
+
     // ---- $Entities (4.1)
     void read_entities() {
         if (in_.binary()) in_.end_line();
@@ -428,32 +473,67 @@ private:
         for (int dim = 0; dim < 4; ++dim) n[dim] = in_.count(names[dim], 6, 20);
         for (int dim = 0; dim < 4; ++dim) {
             for (int64_t e = 0; e < n[dim]; ++e) {
+                GmshEntity entity;
+                entity.dim = dim;
                 const int64_t tag = in_.int_in("an entity tag", INT32_MIN, INT32_MAX);
-                for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) {
-                    if (in_.binary())
-                        in_.raw<double>("an entity bounding box");
-                    else
-                        in_.read_double("an entity bounding box", false);
+                entity.tag = static_cast<int32_t>(tag);
+                const int nbox = dim == 0 ? 3 : 6;
+                entity.has_box = true;
+                for (int k = 0; k < nbox; ++k) {
+                    const double x = in_.binary() ? in_.raw<double>("an entity bounding box")
+                                                  : in_.read_double("an entity bounding box", false);
+                    entity.box[k] = x;
+                    entity.has_box = entity.has_box && std::isfinite(x);
                 }
+                if (dim == 0) std::copy(entity.box.begin(), entity.box.begin() + 3, entity.box.begin() + 3);
                 const int64_t nphys = in_.count("the number of physical tags", 2, 4);
-                int32_t first = 0;
-                for (int64_t p = 0; p < nphys; ++p) {
-                    const auto phys = static_cast<int32_t>(in_.int_in("a physical tag", INT32_MIN, INT32_MAX));
-                    if (p == 0) first = phys;
-                }
+                for (int64_t p = 0; p < nphys; ++p)
+                    entity.physicals.push_back(static_cast<int32_t>(in_.int_in("a physical tag", INT32_MIN, INT32_MAX)));
                 if (dim > 0) {
                     const int64_t nbound = in_.count("the number of bounding entities", 2, 4);
-                    for (int64_t b = 0; b < nbound; ++b) in_.int_in("a bounding entity tag", INT32_MIN, INT32_MAX);
+                    for (int64_t b = 0; b < nbound; ++b)
+                        entity.bounding.push_back(
+                            static_cast<int32_t>(in_.int_in("a bounding entity tag", INT32_MIN, INT32_MAX)));
                 }
-                if (!physical_[dim].emplace(tag, first).second)
+                // A tag that is not positive names no Gmsh entity: its
+                // elements get none (entity_of).
+                const int32_t index = tag > 0 ? static_cast<int32_t>(model_.entities.size()) : -1;
+                if (!index_.emplace(std::make_pair(dim, tag), index).second)
                     in_.fail("entity " + std::to_string(tag) + " of dimension " + std::to_string(dim) + " is listed twice");
+                if (index >= 0) model_.entities.push_back(std::move(entity));
             }
         }
     }
 
-    int32_t physical_of(int dim, int64_t entity) const {
-        const auto it = physical_[dim].find(entity);
-        return it == physical_[dim].end() ? 0 : it->second;
+    // The entity (dim, tag), made if `make` and it is not known; -1 for a tag
+    // that is not positive (no entity: 2.2 elements without one, meshio's 0).
+    int32_t entity_of(int dim, int64_t tag, bool make) {
+        if (tag <= 0 || tag > INT32_MAX) return -1;
+        const auto key = std::make_pair(dim, tag);
+        if (key == last_key_) return last_entity_;
+        const auto it = index_.find(key);
+        int32_t e = -1;
+        if (it != index_.end()) {
+            e = it->second;
+        } else if (make) {
+            e = static_cast<int32_t>(model_.entities.size());
+            GmshEntity entity;
+            entity.dim = dim;
+            entity.tag = static_cast<int32_t>(tag);
+            model_.entities.push_back(std::move(entity));
+            index_[key] = e;
+        }
+        if (e >= 0) {  // not a miss: a later call may make it
+            last_key_ = key;
+            last_entity_ = e;
+        }
+        return e;
+    }
+
+    int32_t first_physical(int32_t e) const {
+        if (e < 0) return 0;
+        const std::vector<int32_t>& p = model_.entities[static_cast<size_t>(e)].physicals;
+        return p.empty() ? 0 : p.front();
     }
 
     // ---- $Nodes
@@ -468,10 +548,11 @@ private:
                                              : in_.read_int("the maximum node tag");
         tags_.reserve(static_cast<size_t>(total));
         d_.xyz.reserve(static_cast<size_t>(3 * total));
+        node_block_entity_.reserve(static_cast<size_t>(total));
         int64_t seen = 0;
         for (int64_t b = 0; b < nblocks; ++b) {
             const auto dim = static_cast<int>(in_.int_in("the entity dimension of a node block", 0, 3));
-            in_.int_in("the entity tag of a node block", INT32_MIN, INT32_MAX);
+            const int64_t tag = in_.int_in("the entity tag of a node block", INT32_MIN, INT32_MAX);
             const auto parametric = static_cast<int>(in_.int_in("the parametric flag of a node block", 0, 1));
             const int extra = parametric ? dim : 0;
             const int64_t n = in_.count("the number of nodes in a block", 8, 32 + 8 * extra);
@@ -479,16 +560,17 @@ private:
                 in_.fail("the node blocks hold more than the " + std::to_string(total) + " nodes of the $Nodes header");
             if (in_.binary()) in_.need(static_cast<uint64_t>(n), static_cast<uint64_t>(8 * (4 + extra)), "nodes");
             for (int64_t i = 0; i < n; ++i) {
-                const int64_t tag = in_.tag("a node tag");
-                if (tag < min_tag || tag > max_tag)
-                    in_.fail("node tag " + std::to_string(tag) + " is outside the range [" + std::to_string(min_tag) +
+                const int64_t node = in_.tag("a node tag");
+                if (node < min_tag || node > max_tag)
+                    in_.fail("node tag " + std::to_string(node) + " is outside the range [" + std::to_string(min_tag) +
                              ", " + std::to_string(max_tag) + "] of the $Nodes header");
-                tags_.push_back(tag);
+                tags_.push_back(node);
             }
             for (int64_t i = 0; i < n; ++i) {
                 for (int k = 0; k < 3; ++k) d_.xyz.push_back(in_.coord("a node coordinate"));
                 for (int k = 0; k < extra; ++k) in_.coord("a node parametric coordinate");
             }
+            node_block_entity_.insert(node_block_entity_.end(), static_cast<size_t>(n), entity_of(dim, tag, false));
             seen += n;
         }
         if (seen != total)
@@ -511,94 +593,51 @@ private:
         }
     }
 
+    // Node tags 1..n in any order: vertex i is the node tagged i + 1, base 1
+    // (the vertices in the writer's order, whatever blocks it put them in).
+    // Other tags: vertices in file order, base 0.
     void finish_nodes() {
         int64_t dup = 0;
         if (!map_.build(tags_, dup)) in_.fail("node tag " + std::to_string(dup) + " appears twice in $Nodes");
-        bool in_order = true;
-        for (size_t i = 0; i < tags_.size() && in_order; ++i) in_order = tags_[i] == static_cast<int64_t>(i) + 1;
-        d_.base = in_order ? 1 : 0;
+        const auto n = static_cast<int64_t>(tags_.size());
+        by_tag_ = std::all_of(tags_.begin(), tags_.end(), [&](int64_t t) { return t >= 1 && t <= n; });
+        d_.base = by_tag_ ? 1 : 0;
+        if (by_tag_ && !std::is_sorted(tags_.begin(), tags_.end())) {
+            std::vector<double> xyz(d_.xyz.size());
+            std::vector<int32_t> entity(node_block_entity_.size());
+            for (size_t i = 0; i < tags_.size(); ++i) {
+                const auto v = static_cast<size_t>(tags_[i] - 1);
+                std::copy_n(&d_.xyz[3 * i], 3, &xyz[3 * v]);
+                if (!entity.empty()) entity[v] = node_block_entity_[i];
+            }
+            d_.xyz = std::move(xyz);
+            node_block_entity_ = std::move(entity);
+        }
         tags_.clear();
         tags_.shrink_to_fit();
     }
 
     int32_t vertex(int64_t tag, int64_t element) {
-        const int32_t v = tag >= 1 ? map_.find(tag) : -1;
+        const int64_t nv = static_cast<int64_t>(d_.xyz.size() / 3);
+        const int32_t v = by_tag_ ? (tag >= 1 && tag <= nv ? static_cast<int32_t>(tag - 1) : -1)
+                                  : (tag >= 1 ? map_.find(tag) : -1);
         if (v < 0)
             in_.fail("element " + std::to_string(element) + ": node tag " + std::to_string(tag) + " is not in $Nodes");
         return v + d_.base;
     }
 
     // ---- $Elements
-    // Stores one element of a known type whose vertices are in v_, from
-    // the geometric entity `entity` (0 when a 2.2 file gives none).
-    void add_element(int type, int32_t physical, int32_t entity) {
-        switch (type) {
-            case kTet:
-                if (d_.tets.size() / 4 >= static_cast<size_t>(INT32_MAX)) in_.fail("more than 2^31 - 1 tets");
-                d_.tets.insert(d_.tets.end(), v_, v_ + 4);
-                d_.regions.push_back(physical);
-                tet_entities_.push_back(entity);
-                break;
-            case kTriangle:
-                if (physical != 0) {
-                    d_.triangles.insert(d_.triangles.end(), v_, v_ + 3);
-                    d_.tri_markers.push_back(physical);
-                } else if (entity != 0) {
-                    entity_triangles_.insert(entity_triangles_.end(), v_, v_ + 3);
-                    triangle_entities_.push_back(entity);
-                }
-                break;
-            case kLine:
-                add_line(physical);
-                break;
-            case kPoint:
-                if (physical != 0) d_.fixed.push_back(v_[0]);
-                break;
-            default:
-                break;
-        }
-    }
-
-    // Every line is a feature edge, also without a physical tag (ref 0), as
-    // every tet is kept (region 0).  A 2.2 file lists a line once per
-    // physical group: the first listing gives the ref, as the first physical
-    // tag of a 4.1 entity does, and the others are dropped (an edge has one
-    // ref).
-    void add_line(int32_t physical) {
-        const auto [lo, hi] = std::minmax(v_[0], v_[1]);
-        const uint64_t key = uint64_t{static_cast<uint32_t>(lo)} << 32 | static_cast<uint32_t>(hi);
-        if (!lines_.insert(key).second) return;
-        d_.feature_edges.insert(d_.feature_edges.end(), v_, v_ + 2);
-        d_.edge_refs.push_back(physical);
-    }
-
-    // The elements lie in more than one entity.
-    static bool several(const std::vector<int32_t>& entities) {
-        return std::any_of(entities.begin(), entities.end(), [&](int32_t e) { return e != entities.front(); });
-    }
-
-    // Without physical volumes, Gmsh's volumes are the regions (gmsh.hpp).
-    void regions_from_entities() {
-        const auto physical = [](int32_t r) { return r != 0; };
-        if (std::any_of(d_.regions.begin(), d_.regions.end(), physical)) return;
-        if (several(tet_entities_)) d_.regions = std::move(tet_entities_);
-        tet_entities_ = {};
-    }
-
-    // Without physical surfaces, Gmsh's surfaces are the face markers, as
-    // its volumes are the regions: a solver can still find the faces of
-    // each surface for its boundary conditions, and the surfaces between
-    // them stay where they are.  One surface alone marks nothing.
-    void markers_from_entities() {
-        if (d_.triangles.empty() && several(triangle_entities_)) {
-            d_.triangles = std::move(entity_triangles_);
-            d_.tri_markers = std::move(triangle_entities_);
-        }
-        entity_triangles_ = {};
-        triangle_entities_ = {};
-    }
-
     static bool used(int type) { return type == kTet || type == kTriangle || type == kLine || type == kPoint; }
+
+    // Keeps one element of a used type whose vertices are in v_.
+    void add_element(const ElementType* t, int32_t physical, int32_t entity, int64_t tag) {
+        Elements& e = elements_[t->dim];
+        if (t->type == kTet && e.entity.size() >= static_cast<size_t>(INT32_MAX)) in_.fail("more than 2^31 - 1 tets");
+        e.vertices.insert(e.vertices.end(), v_, v_ + t->nodes);
+        e.entity.push_back(entity);
+        e.physical.push_back(physical);
+        if (version_ == 41) e.tag.push_back(tag);
+    }
 
     void read_elements41() {
         if (in_.binary()) in_.end_line();
@@ -614,7 +653,7 @@ private:
         int64_t seen = 0;
         for (int64_t b = 0; b < nblocks; ++b) {
             const auto dim = static_cast<int>(in_.int_in("the entity dimension of an element block", 0, 3));
-            const int64_t entity = in_.int_in("the entity tag of an element block", INT32_MIN, INT32_MAX);
+            const int64_t entity_tag = in_.int_in("the entity tag of an element block", INT32_MIN, INT32_MAX);
             const int64_t type = in_.int_in("an element type", INT32_MIN, INT32_MAX);
             const ElementType* t = find_element_type(type);
             if (t && t->dim != dim)
@@ -632,15 +671,16 @@ private:
                 in_.skip_lines(n, "elements of an unknown type");
                 continue;
             }
-            const int32_t physical = physical_of(dim, entity);
             const bool keep = used(t->type);
+            const int32_t entity = keep ? entity_of(dim, entity_tag, true) : -1;
+            const int32_t physical = first_physical(entity);
             for (int64_t e = 0; e < n; ++e) {
                 const int64_t tag = in_.tag("an element tag");
                 for (int k = 0; k < t->nodes; ++k) {
                     const int64_t node = in_.tag("a node tag of an element");
                     if (keep) v_[k] = vertex(node, tag);
                 }
-                if (keep) add_element(t->type, physical, static_cast<int32_t>(entity));
+                if (keep) add_element(t, physical, entity, tag);
             }
         }
         if (seen != total)
@@ -648,14 +688,21 @@ private:
                      std::to_string(total));
     }
 
-    // One 2.2 element after its type and tags.
-    void element22(int64_t tag, const ElementType* t, int32_t physical, int32_t entity) {
+    // One 2.2 element after its type and tags: its entity is made from the
+    // elements that name it, with their physical tags.
+    void element22(int64_t tag, const ElementType* t, int32_t physical, int32_t entity_tag) {
         const bool keep = used(t->type);
         for (int k = 0; k < t->nodes; ++k) {
             const int64_t node = in_.int_in("a node tag of an element", INT32_MIN, INT32_MAX);
             if (keep) v_[k] = vertex(node, tag);
         }
-        if (keep) add_element(t->type, physical, entity);
+        if (!keep) return;
+        const int32_t entity = entity_of(t->dim, entity_tag, true);
+        const std::pair<int32_t, int32_t> pair{entity, physical};
+        if (entity >= 0 && physical != 0 && pair != last_physical_ && entity_physicals_.insert(pair).second)
+            model_.entities[static_cast<size_t>(entity)].physicals.push_back(physical);
+        last_physical_ = pair;
+        add_element(t, physical, entity, tag);
     }
 
     const ElementType* type22(int64_t type) {
@@ -703,18 +750,141 @@ private:
         }
     }
 
+    // ---- the arrays and the model from the elements read
+    // 4.1: the elements of a dimension in the order of their tags (stable),
+    // which is the file order in files Gmsh writes and the order of the
+    // arrays in files bodt writes.
+    static void order_by_tag(Elements& e, int nodes) {
+        if (std::is_sorted(e.tag.begin(), e.tag.end())) return;
+        std::vector<size_t> order(e.tag.size());
+        for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return e.tag[a] < e.tag[b]; });
+        Elements sorted;
+        for (const size_t k : order) {
+            sorted.vertices.insert(sorted.vertices.end(), &e.vertices[k * nodes], &e.vertices[k * nodes] + nodes);
+            sorted.entity.push_back(e.entity[k]);
+            sorted.physical.push_back(e.physical[k]);
+        }
+        e = std::move(sorted);
+    }
+
+    // The elements lie in more than one entity.
+    static bool several(const std::vector<int32_t>& entities) {
+        return std::any_of(entities.begin(), entities.end(), [&](int32_t e) { return e != entities.front(); });
+    }
+
+    int32_t entity_tag(int32_t e) const { return e < 0 ? 0 : model_.entities[static_cast<size_t>(e)].tag; }
+
+    // Vertex indices from 0, for the model.
+    std::vector<int32_t> from_zero(const std::vector<int32_t>& vertices) const {
+        std::vector<int32_t> out(vertices);
+        for (int32_t& v : out) v -= d_.base;
+        return out;
+    }
+
+    void finish() {
+        static const int kNodes[4] = {1, 2, 3, 4};
+        if (version_ == 41)
+            for (int dim = 0; dim < 4; ++dim) order_by_tag(elements_[dim], kNodes[dim]);
+        finish_tets();
+        finish_triangles();
+        finish_lines();
+        finish_points();
+        for (GmshEntity& e : model_.entities)
+            e.key = model_.entity_keyed[e.dim] ? e.tag : (e.physicals.empty() ? 0 : e.physicals.front());
+        model_.node_entity = std::move(node_block_entity_);
+        d_.gmsh = std::make_shared<const GmshModel>(std::move(model_));
+    }
+
+    // Region = the physical tag; without physical volumes, Gmsh's volumes
+    // are the regions (gmsh.hpp).
+    void finish_tets() {
+        Elements& e = elements_[3];
+        d_.tets = std::move(e.vertices);
+        d_.regions = std::move(e.physical);
+        const bool physical = std::any_of(d_.regions.begin(), d_.regions.end(), [](int32_t r) { return r != 0; });
+        if (!physical && several(e.entity)) {
+            model_.entity_keyed[3] = true;
+            for (size_t t = 0; t < d_.regions.size(); ++t) d_.regions[t] = entity_tag(e.entity[t]);
+        }
+        model_.tet_entity = std::move(e.entity);
+    }
+
+    // Marked faces: the triangles with a physical tag.  Without physical
+    // surfaces, Gmsh's surfaces are the face markers, as its volumes are the
+    // regions: a solver can still find the faces of each surface for its
+    // boundary conditions, and the surfaces between them stay where they
+    // are.  One surface alone marks nothing.
+    void finish_triangles() {
+        Elements& e = elements_[2];
+        const size_t n = e.entity.size();
+        std::vector<int32_t> unmarked;  // the entities of triangles without a physical tag, but in an entity
+        for (size_t k = 0; k < n; ++k)
+            if (e.physical[k] != 0) {
+                d_.triangles.insert(d_.triangles.end(), &e.vertices[3 * k], &e.vertices[3 * k] + 3);
+                d_.tri_markers.push_back(e.physical[k]);
+            } else if (e.entity[k] >= 0) {
+                unmarked.push_back(e.entity[k]);
+            }
+        if (d_.triangles.empty() && several(unmarked)) {
+            model_.entity_keyed[2] = true;
+            for (size_t k = 0; k < n; ++k)
+                if (e.entity[k] >= 0) {
+                    d_.triangles.insert(d_.triangles.end(), &e.vertices[3 * k], &e.vertices[3 * k] + 3);
+                    d_.tri_markers.push_back(entity_tag(e.entity[k]));
+                }
+        }
+        model_.triangles = from_zero(e.vertices);
+        model_.triangle_entity = std::move(e.entity);
+        e = Elements{};
+    }
+
+    // Every line is a feature edge, also without a physical tag (ref 0), as
+    // every tet is kept (region 0).  A 2.2 file lists a line once per
+    // physical group: the first listing gives the ref, as the first physical
+    // tag of a 4.1 entity does, and the others are dropped (an edge has one
+    // ref).
+    void finish_lines() {
+        Elements& e = elements_[1];
+        std::unordered_set<uint64_t> seen;
+        for (size_t k = 0; k < e.entity.size(); ++k) {
+            const int32_t* v = &e.vertices[2 * k];
+            const auto [lo, hi] = std::minmax(v[0], v[1]);
+            if (!seen.insert(uint64_t{static_cast<uint32_t>(lo)} << 32 | static_cast<uint32_t>(hi)).second) continue;
+            d_.feature_edges.insert(d_.feature_edges.end(), v, v + 2);
+            d_.edge_refs.push_back(e.physical[k]);
+            model_.line_entity.push_back(e.entity[k]);
+        }
+        model_.lines = from_zero(d_.feature_edges);
+        e = Elements{};
+    }
+
+    // A point element with a physical tag fixes its vertex.
+    void finish_points() {
+        Elements& e = elements_[0];
+        for (size_t k = 0; k < e.entity.size(); ++k)
+            if (e.physical[k] != 0) d_.fixed.push_back(e.vertices[k]);
+        model_.points = from_zero(e.vertices);
+        model_.point_entity = std::move(e.entity);
+        e = Elements{};
+    }
+
     Input in_;
     MeshData d_;
+    GmshModel model_;
     int version_ = 0;
-    bool nodes_read_ = false, elements_read_ = false, entities_read_ = false;
+    bool nodes_read_ = false, elements_read_ = false, entities_read_ = false, names_read_ = false;
     std::vector<int64_t> tags_;  // node tags in file order, while reading $Nodes
     NodeMap map_;
-    std::map<int64_t, int32_t> physical_[4];  // entity tag -> first physical tag, per dimension
-    std::unordered_set<uint64_t> lines_;      // the feature edges so far, (low, high) vertex
-    std::vector<int32_t> tet_entities_;       // each tet's volume entity
-    std::vector<int32_t> entity_triangles_;   // the triangles without a physical tag (3 vertices each)
-    std::vector<int32_t> triangle_entities_;  // and their surface entities
-    int32_t v_[64] = {};                      // vertices of the element being read
+    bool by_tag_ = false;  // the node tags are 1..n: vertex = tag - 1
+    std::vector<int32_t> node_block_entity_;  // per node, the entity of its block (4.1)
+    std::map<std::pair<int, int64_t>, int32_t> index_;  // (dim, tag) -> entity index
+    std::pair<int, int64_t> last_key_{-1, 0};           // the last entity_of() lookup
+    int32_t last_entity_ = -1;
+    std::set<std::pair<int32_t, int32_t>> entity_physicals_;  // 2.2: (entity, physical) pairs seen
+    std::pair<int32_t, int32_t> last_physical_{-1, 0};       // and the last one
+    Elements elements_[4];  // by dimension: points, lines, triangles, tets
+    int32_t v_[64] = {};    // vertices of the element being read
 };
 
 // ---------------------------------------------------------------- writer
@@ -738,6 +908,10 @@ public:
         buf_.append(reinterpret_cast<const char*>(&v), sizeof v);
         maybe_flush();
     }
+    void str(const std::string& s) {
+        buf_ += s;
+        maybe_flush();
+    }
     void i32(int64_t v) { raw(static_cast<int32_t>(v)); }
     void u64(uint64_t v) { raw(v); }
     void f64(double v) { raw(v); }
@@ -754,77 +928,29 @@ private:
     std::string buf_;
 };
 
-// Runs of equal values: [begin, end) index ranges over `items` with `key`.
-struct Run {
-    size_t begin, end;
-    int32_t key;
-};
+// Element type and node count of the elements of each dimension.
+constexpr int kTypeOfDim[4] = {kPoint, kLine, kTriangle, kTet};
+constexpr int kNodesOfDim[4] = {1, 2, 3, 4};
 
-std::vector<Run> runs_of(const std::vector<int32_t>& keys, const std::vector<size_t>& items) {
-    std::vector<Run> runs;
-    for (size_t k = 0; k < items.size(); ++k) {
-        const int32_t key = keys[items[k]];
-        if (runs.empty() || runs.back().key != key)
-            runs.push_back({k, k + 1, key});
-        else
-            runs.back().end = k + 1;
-    }
-    return runs;
-}
-
-// The distinct values of `keys` in increasing order: entity k + 1 (of one
-// dimension) holds the elements with the k-th.
-std::vector<int32_t> distinct(std::vector<int32_t> keys) {
-    std::sort(keys.begin(), keys.end());
-    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-    return keys;
-}
-
-// The entity (from 1) of the elements with `key`, `ids` from distinct().
-int entity_of(const std::vector<int32_t>& ids, int32_t key) {
-    return static_cast<int>(std::lower_bound(ids.begin(), ids.end(), key) - ids.begin()) + 1;
-}
-
+// Writes the layout (gmsh_layout.hpp) of a mesh.  4.1: entities, nodes in a
+// block per entity, elements in a block per entity, element tags numbering
+// each dimension's elements in their order (points, lines, triangles, tets)
+// so that a reader that orders elements by tag gets them back in that
+// order.  2.2: elements in that order, each tagged with its entity's first
+// physical tag (0 without one) and its entity.
 class Writer {
 public:
     Writer(const MeshData& d, int version, bool binary, Out& out)
-        : d_(d), version_(version), binary_(binary), out_(out) {
+        : d_(d), layout_(layout_gmsh(d)), version_(version), binary_(binary), out_(out) {
         nv_ = d.xyz.size() / 3;
-        nt_ = d.tets.size() / 4;
-        // regions -> volume entities 1..k (sorted ids)
-        tet_region_.assign(nt_, 0);
-        if (!d.regions.empty()) tet_region_ = d.regions;
-        volume_ids_ = distinct(tet_region_);
-        if (volume_ids_.empty()) volume_ids_.push_back(0);
-        for (size_t t = 0; t < nt_; ++t) tet_items_.push_back(t);
-        tet_runs_ = runs_of(tet_region_, tet_items_);
-        // nonzero markers -> surface entities 1..k
-        for (size_t f = 0; f < d.tri_markers.size(); ++f)
-            if (d.tri_markers[f] != 0) {
-                tri_items_.push_back(f);
-                surface_ids_.push_back(d.tri_markers[f]);
-            }
-        surface_ids_ = distinct(surface_ids_);
-        tri_runs_ = runs_of(d.tri_markers, tri_items_);
-        // edge refs -> curve entities 1..k, ref 0 without physical group
-        nedges_ = d.feature_edges.size() / 2;
-        edge_ref_.assign(nedges_, 0);
-        if (!d.edge_refs.empty()) edge_ref_ = d.edge_refs;
-        curve_ids_ = distinct(edge_ref_);
-        for (size_t e = 0; e < nedges_; ++e) edge_items_.push_back(e);
-        edge_runs_ = runs_of(edge_ref_, edge_items_);
-        nfixed_ = d.fixed.size();
-        nelements_ = nfixed_ + nedges_ + tri_items_.size() + nt_;
-        // bounding box for the entities
-        for (int k = 0; k < 3; ++k) {
-            lo_[k] = nv_ ? d.xyz[k] : 0.0;
-            hi_[k] = lo_[k];
+        size_t next = 1;  // the element tags of each dimension follow the lower ones'
+        for (int dim = 0; dim < 4; ++dim) {
+            const std::vector<int32_t>& entity = layout_.element_entity[dim];
+            tags_[dim].assign(entity.size(), 0);
+            for (size_t k = 0; k < entity.size(); ++k)
+                if (entity[k] >= 0) tags_[dim][k] = next++;
         }
-        for (size_t v = 0; v < nv_; ++v)
-            for (int k = 0; k < 3; ++k) {
-                lo_[k] = std::min(lo_[k], d.xyz[3 * v + k]);
-                hi_[k] = std::max(hi_[k], d.xyz[3 * v + k]);
-            }
+        nelements_ = next - 1;
     }
 
     void write() {
@@ -846,147 +972,143 @@ public:
     }
 
 private:
-    int volume_entity(int32_t region) const { return entity_of(volume_ids_, region); }
-    int surface_entity(int32_t marker) const { return entity_of(surface_ids_, marker); }
-    int curve_entity(int32_t ref) const { return entity_of(curve_ids_, ref); }
-    uint64_t node(int32_t v) const { return static_cast<uint64_t>(static_cast<int64_t>(v) - d_.base + 1); }
+    // The node tags of element k of `dim`.
+    void node_tags(int dim, size_t k, uint64_t* tags) const {
+        if (dim == 0) {
+            tags[0] = static_cast<uint64_t>(layout_.points[k]) + 1;
+            return;
+        }
+        const int32_t* v = dim == 1 ? &d_.feature_edges[2 * k] : dim == 2 ? &d_.triangles[3 * k] : &d_.tets[4 * k];
+        for (int j = 0; j < kNodesOfDim[dim]; ++j) tags[j] = static_cast<uint64_t>(int64_t{v[j]} - d_.base + 1);
+    }
 
     void write_physical_names() {
-        size_t n = (nfixed_ ? 1 : 0) + surface_ids_.size();
-        for (int32_t r : curve_ids_) n += r != 0;
-        for (int32_t r : volume_ids_) n += r != 0;
-        if (n == 0) return;
-        out_.text("$PhysicalNames\n%zu\n", n);
-        if (nfixed_) out_.text("0 1 \"fixed vertices\"\n");
-        for (int32_t r : curve_ids_)
-            if (r != 0) out_.text("1 %d \"edge ref %d\"\n", r, r);
-        for (int32_t m : surface_ids_) out_.text("2 %d \"marker %d\"\n", m, m);
-        for (int32_t r : volume_ids_)
-            if (r != 0) out_.text("3 %d \"region %d\"\n", r, r);
+        if (layout_.names.empty()) return;
+        out_.text("$PhysicalNames\n%zu\n", layout_.names.size());
+        for (const GmshPhysicalName& n : layout_.names) {
+            out_.text("%d %d \"", n.dim, n.tag);
+            out_.str(n.name);
+            out_.text("\"\n");
+        }
         out_.text("$EndPhysicalNames\n");
     }
 
     // ---- 4.1
     void write_entities41() {
         out_.text("$Entities\n");
-        const size_t counts[4] = {nfixed_, curve_ids_.size(), surface_ids_.size(), volume_ids_.size()};
+        size_t counts[4] = {0, 0, 0, 0};
+        for (const GmshLayout::Entity& e : layout_.entities) ++counts[e.dim];
         if (binary_)
             for (size_t c : counts) out_.u64(c);
         else
             out_.text("%zu %zu %zu %zu\n", counts[0], counts[1], counts[2], counts[3]);
-        for (size_t p = 0; p < nfixed_; ++p) {
-            const double* x = &d_.xyz[3 * static_cast<size_t>(d_.fixed[p] - d_.base)];
+        for (const GmshLayout::Entity& e : layout_.entities) {
+            const int nbox = e.dim == 0 ? 3 : 6;
             if (binary_) {
-                out_.i32(static_cast<int64_t>(p) + 1);
-                for (int k = 0; k < 3; ++k) out_.f64(x[k]);
-                out_.u64(1);
-                out_.i32(1);
+                out_.i32(e.tag);
+                for (int k = 0; k < nbox; ++k) out_.f64(e.box[k]);
             } else {
-                out_.text("%zu %.17g %.17g %.17g 1 1\n", p + 1, x[0], x[1], x[2]);
+                out_.text("%d", e.tag);
+                for (int k = 0; k < nbox; ++k) out_.text(" %.17g", e.box[k]);
             }
+            tag_list(e.physicals);
+            if (e.dim > 0) tag_list(e.bounding);
+            if (!binary_) out_.text("\n");
         }
-        for (size_t c = 0; c < curve_ids_.size(); ++c) entity41(static_cast<int>(c) + 1, curve_ids_[c]);
-        for (size_t s = 0; s < surface_ids_.size(); ++s) entity41(static_cast<int>(s) + 1, surface_ids_[s]);
-        for (size_t v = 0; v < volume_ids_.size(); ++v) entity41(static_cast<int>(v) + 1, volume_ids_[v]);
         out_.text("%s$EndEntities\n", binary_ ? "\n" : "");
     }
 
-    // A curve, surface or volume entity with one physical tag (none if 0)
-    // and no bounding entities.
-    void entity41(int tag, int32_t physical) {
+    // A count and the tags.
+    void tag_list(const std::vector<int32_t>& tags) {
         if (binary_) {
-            out_.i32(tag);
-            for (int k = 0; k < 3; ++k) out_.f64(lo_[k]);
-            for (int k = 0; k < 3; ++k) out_.f64(hi_[k]);
-            out_.u64(physical != 0 ? 1 : 0);
-            if (physical != 0) out_.i32(physical);
-            out_.u64(0);
+            out_.u64(tags.size());
+            for (int32_t t : tags) out_.i32(t);
         } else {
-            out_.text("%d %.17g %.17g %.17g %.17g %.17g %.17g ", tag, lo_[0], lo_[1], lo_[2], hi_[0], hi_[1], hi_[2]);
-            if (physical != 0)
-                out_.text("1 %d 0\n", physical);
-            else
-                out_.text("0 0\n");
+            out_.text(" %zu", tags.size());
+            for (int32_t t : tags) out_.text(" %d", t);
+        }
+    }
+
+    void block_header41(int dim, int tag, int type_or_parametric, size_t n) {
+        if (binary_) {
+            out_.i32(dim);
+            out_.i32(tag);
+            out_.i32(type_or_parametric);
+            out_.u64(n);
+        } else {
+            out_.text("%d %d %d %zu\n", dim, tag, type_or_parametric, n);
+        }
+    }
+
+    // A section header: number of blocks, of items, smallest and largest tag.
+    void counts41(size_t blocks, size_t n) {
+        if (binary_) {
+            out_.u64(blocks);
+            out_.u64(n);
+            out_.u64(n ? 1 : 0);
+            out_.u64(n);
+        } else {
+            out_.text("%zu %zu %zu %zu\n", blocks, n, n ? size_t{1} : size_t{0}, n);
         }
     }
 
     void write_nodes41() {
         out_.text("$Nodes\n");
-        const size_t nblocks = nv_ ? 1 : 0;
-        // every node in one block on the first volume
-        if (binary_) {
-            out_.u64(nblocks);
-            out_.u64(nv_);
-            out_.u64(nv_ ? 1 : 0);
-            out_.u64(nv_);
-            if (nv_) {
-                out_.i32(3);
-                out_.i32(1);
-                out_.i32(0);
-                out_.u64(nv_);
+        // the vertices of each entity's block, in their order (CSR)
+        const size_t ne = layout_.entities.size();
+        std::vector<size_t> first(ne + 1, 0);
+        for (int32_t e : layout_.node_entity) ++first[static_cast<size_t>(e) + 1];
+        size_t blocks = 0;
+        for (size_t e = 0; e < ne; ++e) {
+            blocks += first[e + 1] > 0;
+            first[e + 1] += first[e];
+        }
+        std::vector<size_t> vertices(nv_), fill(first.begin(), first.end() - 1);
+        for (size_t v = 0; v < nv_; ++v) vertices[fill[static_cast<size_t>(layout_.node_entity[v])]++] = v;
+        counts41(blocks, nv_);
+        for (size_t e = 0; e < ne; ++e) {
+            if (first[e + 1] == first[e]) continue;
+            const GmshLayout::Entity& entity = layout_.entities[e];
+            block_header41(entity.dim, entity.tag, 0, first[e + 1] - first[e]);
+            for (size_t k = first[e]; k < first[e + 1]; ++k) {
+                if (binary_)
+                    out_.u64(vertices[k] + 1);
+                else
+                    out_.text("%zu\n", vertices[k] + 1);
             }
-            for (size_t v = 0; v < nv_; ++v) out_.u64(v + 1);
-            for (size_t k = 0; k < 3 * nv_; ++k) out_.f64(d_.xyz[k]);
-            out_.text("\n");
-        } else {
-            out_.text("%zu %zu %zu %zu\n", nblocks, nv_, nv_ ? size_t{1} : size_t{0}, nv_);
-            if (nv_) out_.text("3 1 0 %zu\n", nv_);
-            for (size_t v = 0; v < nv_; ++v) out_.text("%zu\n", v + 1);
-            for (size_t v = 0; v < nv_; ++v)
-                out_.text("%.17g %.17g %.17g\n", d_.xyz[3 * v], d_.xyz[3 * v + 1], d_.xyz[3 * v + 2]);
+            for (size_t k = first[e]; k < first[e + 1]; ++k) {
+                const double* x = &d_.xyz[3 * vertices[k]];
+                if (binary_)
+                    for (int j = 0; j < 3; ++j) out_.f64(x[j]);
+                else
+                    out_.text("%.17g %.17g %.17g\n", x[0], x[1], x[2]);
+            }
         }
-        out_.text("$EndNodes\n");
-    }
-
-    void block_header41(int dim, int entity, int type, size_t n) {
-        if (binary_) {
-            out_.i32(dim);
-            out_.i32(entity);
-            out_.i32(type);
-            out_.u64(n);
-        } else {
-            out_.text("%d %d %d %zu\n", dim, entity, type, n);
-        }
-    }
-
-    void element41(const int32_t* v, int nodes) {
-        ++tag_;
-        if (binary_) {
-            out_.u64(tag_);
-            for (int k = 0; k < nodes; ++k) out_.u64(node(v[k]));
-        } else {
-            out_.text("%zu", tag_);
-            for (int k = 0; k < nodes; ++k) out_.text(" %llu", static_cast<unsigned long long>(node(v[k])));
-            out_.text("\n");
-        }
+        out_.text("%s$EndNodes\n", binary_ ? "\n" : "");
     }
 
     void write_elements41() {
         out_.text("$Elements\n");
-        const size_t nblocks = nfixed_ + edge_runs_.size() + tri_runs_.size() + tet_runs_.size();
-        if (binary_) {
-            out_.u64(nblocks);
-            out_.u64(nelements_);
-            out_.u64(nelements_ ? 1 : 0);
-            out_.u64(nelements_);
-        } else {
-            out_.text("%zu %zu %zu %zu\n", nblocks, nelements_, nelements_ ? size_t{1} : size_t{0}, nelements_);
-        }
-        for (size_t p = 0; p < nfixed_; ++p) {
-            block_header41(0, static_cast<int>(p) + 1, kPoint, 1);
-            element41(&d_.fixed[p], 1);
-        }
-        for (const Run& r : edge_runs_) {
-            block_header41(1, curve_entity(r.key), kLine, r.end - r.begin);
-            for (size_t k = r.begin; k < r.end; ++k) element41(&d_.feature_edges[2 * edge_items_[k]], 2);
-        }
-        for (const Run& r : tri_runs_) {
-            block_header41(2, surface_entity(r.key), kTriangle, r.end - r.begin);
-            for (size_t k = r.begin; k < r.end; ++k) element41(&d_.triangles[3 * tri_items_[k]], 3);
-        }
-        for (const Run& r : tet_runs_) {
-            block_header41(3, volume_entity(r.key), kTet, r.end - r.begin);
-            for (size_t k = r.begin; k < r.end; ++k) element41(&d_.tets[4 * tet_items_[k]], 4);
+        size_t blocks = 0;
+        for (const GmshLayout::Entity& e : layout_.entities) blocks += !e.elements.empty();
+        counts41(blocks, nelements_);
+        uint64_t nodes[4];
+        for (const GmshLayout::Entity& e : layout_.entities) {
+            if (e.elements.empty()) continue;
+            const int n = kNodesOfDim[e.dim];
+            block_header41(e.dim, e.tag, kTypeOfDim[e.dim], e.elements.size());
+            for (const int32_t el : e.elements) {
+                const auto k = static_cast<size_t>(el);
+                node_tags(e.dim, k, nodes);
+                if (binary_) {
+                    out_.u64(tags_[e.dim][k]);
+                    for (int j = 0; j < n; ++j) out_.u64(nodes[j]);
+                } else {
+                    out_.text("%zu", tags_[e.dim][k]);
+                    for (int j = 0; j < n; ++j) out_.text(" %llu", static_cast<unsigned long long>(nodes[j]));
+                    out_.text("\n");
+                }
+            }
         }
         out_.text("%s$EndElements\n", binary_ ? "\n" : "");
     }
@@ -1005,57 +1127,45 @@ private:
         out_.text("%s$EndNodes\n", binary_ ? "\n" : "");
     }
 
-    // One element with tags (physical, elementary).
-    void element22(int type, int32_t physical, int entity, const int32_t* v, int nodes) {
-        ++tag_;
-        if (binary_) {
-            out_.i32(static_cast<int64_t>(tag_));
-            out_.i32(physical);
-            out_.i32(entity);
-            for (int k = 0; k < nodes; ++k) out_.i32(static_cast<int64_t>(node(v[k])));
-        } else {
-            out_.text("%zu %d 2 %d %d", tag_, type, physical, entity);
-            for (int k = 0; k < nodes; ++k) out_.text(" %llu", static_cast<unsigned long long>(node(v[k])));
-            out_.text("\n");
-        }
-    }
-
-    void header22(int type, size_t n) {
-        if (binary_ && n > 0) {
-            out_.i32(type);
-            out_.i32(static_cast<int64_t>(n));
-            out_.i32(2);
-        }
-    }
-
     void write_elements22() {
         out_.text("$Elements\n%zu\n", nelements_);
-        header22(kPoint, nfixed_);
-        for (size_t p = 0; p < nfixed_; ++p) element22(kPoint, 1, static_cast<int>(p) + 1, &d_.fixed[p], 1);
-        header22(kLine, nedges_);
-        for (size_t e = 0; e < nedges_; ++e)
-            element22(kLine, edge_ref_[e], curve_entity(edge_ref_[e]), &d_.feature_edges[2 * e], 2);
-        header22(kTriangle, tri_items_.size());
-        for (size_t f : tri_items_) {
-            const int32_t m = d_.tri_markers[f];
-            element22(kTriangle, m, surface_entity(m), &d_.triangles[3 * f], 3);
+        uint64_t nodes[4];
+        for (int dim = 0; dim < 4; ++dim) {
+            const std::vector<int32_t>& entity = layout_.element_entity[dim];
+            const size_t n = static_cast<size_t>(std::count_if(entity.begin(), entity.end(), [](int32_t e) { return e >= 0; }));
+            if (binary_ && n > 0) {  // one header for the elements of a type with two tags
+                out_.i32(kTypeOfDim[dim]);
+                out_.i32(static_cast<int64_t>(n));
+                out_.i32(2);
+            }
+            for (size_t k = 0; k < entity.size(); ++k) {
+                if (entity[k] < 0) continue;
+                const GmshLayout::Entity& e = layout_.entities[static_cast<size_t>(entity[k])];
+                const int32_t physical = e.physicals.empty() ? 0 : e.physicals.front();
+                node_tags(dim, k, nodes);
+                if (binary_) {
+                    out_.i32(static_cast<int64_t>(tags_[dim][k]));
+                    out_.i32(physical);
+                    out_.i32(e.tag);
+                    for (int j = 0; j < kNodesOfDim[dim]; ++j) out_.i32(static_cast<int64_t>(nodes[j]));
+                } else {
+                    out_.text("%zu %d 2 %d %d", tags_[dim][k], kTypeOfDim[dim], physical, e.tag);
+                    for (int j = 0; j < kNodesOfDim[dim]; ++j)
+                        out_.text(" %llu", static_cast<unsigned long long>(nodes[j]));
+                    out_.text("\n");
+                }
+            }
         }
-        header22(kTet, nt_);
-        for (size_t t = 0; t < nt_; ++t)
-            element22(kTet, tet_region_[t], volume_entity(tet_region_[t]), &d_.tets[4 * t], 4);
         out_.text("%s$EndElements\n", binary_ ? "\n" : "");
     }
 
     const MeshData& d_;
+    const GmshLayout layout_;
     int version_;
     bool binary_;
     Out& out_;
-    size_t nv_ = 0, nt_ = 0, nedges_ = 0, nfixed_ = 0, nelements_ = 0;
-    size_t tag_ = 0;  // the last element tag written
-    std::vector<int32_t> tet_region_, volume_ids_, surface_ids_, edge_ref_, curve_ids_;
-    std::vector<size_t> tet_items_, tri_items_, edge_items_;
-    std::vector<Run> tet_runs_, tri_runs_, edge_runs_;
-    double lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
+    size_t nv_ = 0, nelements_ = 0;
+    std::array<std::vector<size_t>, 4> tags_;  // per dimension and element: its tag (0: not written)
 };
 
 // The writer's input checks: sizes consistent and every index in range.
@@ -1078,6 +1188,16 @@ void check_for_writing(const MeshData& d) {
     check(d.triangles, "triangle");
     check(d.feature_edges, "feature edge");
     check(d.fixed, "fixed");
+    const MeshData::Origins& o = d.origins;
+    if (!o.tet_origins.empty() && o.tet_origins.size() != d.tets.size() / 4) bad("one origin per tet expected");
+    if (o.parent_offsets.empty()) return;
+    if (o.input_vertices < 0 || o.input_vertices > nv ||
+        o.parent_offsets.size() != static_cast<size_t>(nv - o.input_vertices) + 1 || o.parent_offsets.front() != 0 ||
+        static_cast<size_t>(o.parent_offsets.back()) != o.parents.size() || o.weights.size() != o.parents.size() ||
+        !std::is_sorted(o.parent_offsets.begin(), o.parent_offsets.end()))
+        bad("vertex parents that do not fit the vertices");
+    for (int32_t p : o.parents)
+        if (p < 0 || p >= o.input_vertices) bad("a vertex parent " + std::to_string(p) + " is not an input vertex");
 }
 
 }  // namespace

@@ -4,10 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace bodt {
+
+struct GmshModel;  // io/gmsh_model.hpp
 
 // Plain arrays.  Vertex indices count from `base`: readers keep the file's
 // numbering (Medit 1, TetGen 0 or 1), so messages about the mesh in a file
@@ -31,6 +34,25 @@ struct MeshData {
         std::vector<double> values;
     };
     std::vector<TetField> tet_fields;
+    // What a Gmsh file holds beyond these arrays (names, entities, the
+    // entity of each element), from read_gmsh; null for other sources.
+    // write_gmsh writes the mesh back into those entities.
+    std::shared_ptr<const GmshModel> gmsh;
+    // Where the vertices and tets came from when the mesh is the one read
+    // after steps that changed its connectivity (the C API fills it for
+    // write_gmsh).  Vertex indices count from 0.
+    struct Origins {
+        // Without parent offsets every vertex is an input vertex; with them,
+        // vertices from `input_vertices` on were made by steps, made vertex
+        // k from the input vertices parents[offsets[k] .. offsets[k + 1])
+        // with those weights.
+        int32_t input_vertices = 0;
+        std::vector<int64_t> parent_offsets;
+        std::vector<int32_t> parents;
+        std::vector<double> weights;
+        std::vector<int32_t> tet_origins;  // per tet, the input tet it came from (empty: tet t is input tet t)
+    };
+    Origins origins;
 };
 
 // The values are those of enum bodt_format (bodt.h).

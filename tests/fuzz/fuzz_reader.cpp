@@ -15,8 +15,12 @@
 // bodt::Error is the expected outcome of a bad file.  Anything else (another
 // exception, a sanitizer report, an allocation past -malloc_limit_mb) is a
 // bug.  On success the MeshData must be consistent (sizes, every index in
-// [base, base + nverts)), else abort().
+// [base, base + nverts)), and for Gmsh its model must fit the mesh and the
+// writer's layout of it (gmsh_layout.hpp) put every element into an entity
+// of its dimension, else abort().
 #include "io/gmsh.hpp"
+#include "io/gmsh_layout.hpp"
+#include "io/gmsh_model.hpp"
 #include "io/medit_binary.hpp"
 #include "io/mesh_io.hpp"
 #include "io/vtk_legacy.hpp"
@@ -77,6 +81,25 @@ void check_index(int32_t v, int base, size_t nverts) {
     FUZZ_CHECK(int64_t(v) >= base && int64_t(v) < int64_t(base) + int64_t(nverts));
 }
 
+#if BODT_FUZZ_FORMAT == 4
+// The model fits the arrays, and the writer's layout of the mesh puts every
+// element and node into an entity of its dimension.
+void check_gmsh(const bodt::MeshData& d) {
+    FUZZ_CHECK(d.gmsh && d.gmsh->fits(d.xyz.size() / 3));
+    FUZZ_CHECK(d.gmsh->tet_entity.size() == d.tets.size() / 4);
+    const bodt::GmshLayout l = bodt::layout_gmsh(d);
+    const size_t counts[4] = {l.points.size(), d.feature_edges.size() / 2, d.tri_markers.size(), d.tets.size() / 4};
+    for (int dim = 0; dim < 4; ++dim) {
+        FUZZ_CHECK(l.element_entity[dim].size() == counts[dim]);
+        for (const int32_t e : l.element_entity[dim])
+            FUZZ_CHECK(e == -1 || (e >= 0 && size_t(e) < l.entities.size() && l.entities[size_t(e)].dim == dim));
+    }
+    for (const int32_t e : l.element_entity[3]) FUZZ_CHECK(e >= 0);
+    FUZZ_CHECK(l.node_entity.size() == d.xyz.size() / 3);
+    for (const int32_t e : l.node_entity) FUZZ_CHECK(e >= 0 && size_t(e) < l.entities.size());
+}
+#endif
+
 void check(const bodt::MeshData& d) {
     FUZZ_CHECK(d.base == 0 || d.base == 1);
     FUZZ_CHECK(d.xyz.size() % 3 == 0);
@@ -96,6 +119,11 @@ void check(const bodt::MeshData& d) {
     for (int32_t v : d.feature_edges) check_index(v, d.base, nverts);
     // tet_fields are written, never read back.
     FUZZ_CHECK(d.tet_fields.empty());
+#if BODT_FUZZ_FORMAT == 4
+    check_gmsh(d);
+#else
+    FUZZ_CHECK(!d.gmsh);
+#endif
 }
 
 bodt::MeshData read(const uint8_t* data, size_t size) {
