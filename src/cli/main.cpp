@@ -55,8 +55,10 @@ std::string for_the_command_line(int status, std::string message, const char* in
     return message + (inverted_hint ? std::string("\nbodt: ") + inverted_hint : "");
 }
 
-// `flags`: bodt_create_flag bits for a mesh file; `inverted_hint`: see
-// for_the_command_line; `progress`: ended before an error is printed.
+// `flags`: bodt_create_flag bits for a mesh file, which is read in its own
+// numbering (BODT_CREATE_FILE_BASE), so that every index the command shows,
+// in messages and in the report, is the one the file has; `inverted_hint`:
+// see for_the_command_line; `progress`: ended before an error is printed.
 bool load(const std::string& path, bodt_mesh** mesh, uint32_t flags, const char* inverted_hint = nullptr,
           Progress* progress = nullptr) {
     std::string message;
@@ -64,7 +66,7 @@ bool load(const std::string& path, bodt_mesh** mesh, uint32_t flags, const char*
     if (is_surface_path(path)) {
         status = tetrahedralize_surface(path, mesh, message);
     } else {
-        status = bodt_mesh_read_format(path.c_str(), BODT_FORMAT_AUTO, flags, mesh);
+        status = bodt_mesh_read_format(path.c_str(), BODT_FORMAT_AUTO, flags | BODT_CREATE_FILE_BASE, mesh);
         if (status != BODT_OK) message = bodt_mesh_last_error(nullptr);
     }
     if (status != BODT_OK) {

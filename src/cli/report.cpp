@@ -715,9 +715,9 @@ bool render_report(const MeshSnapshot& original, const MeshSnapshot& improved, c
     // Worst tets.
     s += "<section id=\"worst\">\n<h2>Worst tets</h2>\n<p class=\"note\">The " +
          std::to_string(kWorstCount) + " tets with the lowest stretch, worst first; the first " +
-         std::to_string(kMarkedCount) + " (<span class=\"markdot\"></span>) are marked in the views above.  Tet "
-         "indices count from " + std::to_string(b.base) +
-         ", as the mesh's own numbering; angles below 10" + deg + " or above 165" + deg +
+         std::to_string(kMarkedCount) + " (<span class=\"markdot\"></span>) are marked in the views above.  Tets "
+         "and vertices are numbered as in each file: the improved mesh's from " + std::to_string(b.base) +
+         ", the original's from " + std::to_string(a.base) + "; angles below 10" + deg + " or above 165" + deg +
          " in red.</p>\n";
     s += "<h3><span class=\"dot after\"></span>Improved mesh</h3>\n" + worst_table(b, "improved");
     s += "<h3><span class=\"dot before\"></span>Original mesh</h3>\n" + worst_table(a, "original");

@@ -9,7 +9,7 @@ surface_without_tetgen (without), compare, convert, convert_formats (needs
 the .meshb, .msh, .vtu and .inp writers), param, progress (uses a
 pseudo-terminal and a named pipe for a slow read), histogram, help, report,
 early_output (named pipes as inputs that must not be read), threads,
-improve_json, inverted_message.  Every value checked comes from running the
+improve_json, inverted_message, file_numbering.  Every value checked comes from running the
 command; expected mesh quality is recomputed here from the mesh file with
 plain Python (no library code).  Exits 0 on success, 1 on the
 first failed check.
@@ -1393,6 +1393,36 @@ def case_inverted_message(args):
 
 
 
+def case_file_numbering(args):
+    """The command numbers as the file does: a bad Medit file's message names
+    its tet and vertex from 1, and the report says each mesh's numbering
+    (Medit from 1, VTK from 0) and lists the worst tets in it."""
+    bad = os.path.join(args.out, "repeated_vertex.mesh")
+    with open(bad, "w") as f:
+        f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n5\n0 0 0 0\n1 0 0 0\n0 1 0 0\n"
+                "0 0 1 0\n1 1 1 0\nTetrahedra\n2\n1 2 3 4 0\n2 3 3 5 0\nEnd\n")
+    code, out, err = run(args.bodt, "quality", bad)
+    check(code == 2, "quality of a bad mesh: exit %d" % code)
+    check("tet 2 uses vertex 3 twice (numbered from 1)" in err,
+          "the message is not in the file's numbering: %r" % err)
+    src = os.path.join(args.data, "box2.mesh")
+    vtk = os.path.join(args.out, "numbering_improved.vtk")
+    code, out, err = run(args.bodt, "improve", src, vtk, "--iterations", "2", "-q")
+    check(code == 0, "improve to .vtk: %d %r" % (code, err))
+    html = os.path.join(args.out, "numbering.html")
+    code, out, err = run(args.bodt, "report", src, vtk, "-o", html, "-q")
+    if check(code == 0, "report: %d %r" % (code, err)):
+        text = open(html).read()
+        check("the improved mesh's from 0, the original's from 1" in text,
+              "the report does not say each file's numbering")
+        n_tets = len(read_medit(src)[1])
+        rows = re.findall(r'id="worst-original" data-base="1".*?</table>', text, re.S)
+        ids = [int(x) for x in re.findall(r'<tr data-tet="(\d+)"', rows[0])] if rows else []
+        check(ids and min(ids) >= 1 and max(ids) <= n_tets,
+              "the original's worst tets are not numbered from 1 to %d: %r" % (n_tets, ids))
+
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bodt", required=True)
@@ -1402,7 +1432,7 @@ def main():
                                      "surface_without_tetgen", "improve_opt_weighted", "improve_phased",
                                      "compare", "convert", "convert_formats", "param", "progress", "histogram",
                                      "help", "report", "early_output", "threads", "improve_json",
-                                     "inverted_message"])
+                                     "inverted_message", "file_numbering"])
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     globals()["case_" + args.case](args)

@@ -23,6 +23,7 @@ import html.parser
 import json
 import math
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -367,11 +368,12 @@ def check_page(report, lib, original, improved, same_handle=True):
             continue
         body = [(tr, cells) for tr, cells in table if tr.get("data-tet") is not None]
         order = sorted(range(m["tets"]), key=lambda t: (m["tet_stretch"][t], t))[:20]
-        check([int(tr["data-tet"]) for tr, _ in body] == order,
-              "%s: the 20 tets of lowest stretch, worst first (base 0)" % which)
+        base = table_base(text, which)
+        check([int(tr["data-tet"]) - base for tr, _ in body] == order,
+              "%s: the 20 tets of lowest stretch, worst first (numbered from %d)" % (which, base))
         for (tr, cells), t in zip(body, order):
             vals = [c[0].get("data-value") for c in cells]
-            ok = (cells[1][1] == str(t) and
+            ok = (cells[1][1] == str(t + base) and
                   float(vals[2]) == m["tet_min_dihedral"][t] and
                   float(vals[3]) == m["tet_max_dihedral"][t] and
                   float(vals[4]) == m["tet_stretch"][t] and
@@ -422,6 +424,14 @@ def boundary_faces(m):
     return faces, seen
 
 
+def table_base(page_text, which):
+    """The numbering (0 or 1) of the page's table of the worst tets of `which`:
+    the mesh's file's own (Medit counts from 1)."""
+    found = re.search(r'id="worst-%s" data-base="([01])"' % which, page_text)
+    check(found is not None, "the %s worst-tets table says its numbering" % which)
+    return int(found.group(1)) if found else 0
+
+
 def check_views(page, lib, page_text):
     """Three views per mesh, drawing the faces that face them (or the
     outline), with the worst tets of the table marked at their centroids."""
@@ -432,6 +442,7 @@ def check_views(page, lib, page_text):
         m = lib[which]
         faces, seen = boundary_faces(m)
         xyz, tets = m["xyz"], m["tets_indices"]
+        base = table_base(page_text, which)
         worst = [int(tr["data-tet"]) for tr, _ in page.rows.get("worst-" + which, []) if tr.get("data-tet")][:10]
         for name, (right, up, toward, sign) in VIEWS.items():
             v = views.get((which, name))
@@ -466,7 +477,7 @@ def check_views(page, lib, page_text):
             check(sorted((int(k["data-rank"]), int(k["data-tet"])) for k in marks) ==
                   list(enumerate(worst, 1)), "%s: the marks are not the table's first tets" % what)
             for k in marks:
-                t = int(k["data-tet"])
+                t = int(k["data-tet"]) - base
                 c = [sum(xyz[3 * tets[4 * t + j] + a] for j in range(4)) / 4 for a in range(3)]
                 if not check(abs(k["cx"] - X(c)) <= 0.51 and abs(k["cy"] - Y(c)) <= 0.51,
                              "%s: mark %s at (%d, %d), the centroid projects to (%.1f, %.1f)" %
