@@ -2,8 +2,8 @@
 # The main job, end to end on a fresh Debian 12 machine: install what is
 # missing, build the `bodt` command (Release, in build/), and improve a small,
 # visibly bad tet mesh bundled in examples/data/ with B-ODT (the default
-# mode), printing the quality before and after, then compare the two and
-# write the HTML report build/demo/report.html.
+# mode), printing the quality before and after and writing the HTML report
+# build/demo/report.html, then compare the two.
 #
 #   bash scripts/demo.sh [extra cmake -D options]
 set -euo pipefail
@@ -21,15 +21,12 @@ cmake --build build --target bodt_cli -j"$(nproc)"
 in=examples/data/stellar_house2.node
 out=build/demo/stellar_house2-bodt.mesh
 mkdir -p build/demo
-echo
-echo "== bodt improve $in $out --mode bodt --iterations 20"
-echo "   (Stellar's house2: 400 vertices, 1389 tets; angles in degrees)"
-build/bodt improve "$in" "$out" --mode bodt --iterations 20
 report=build/demo/report.html
+echo
+echo "== bodt improve $in $out --mode bodt --iterations 20 --report $report"
+echo "   (Stellar's house2: 400 vertices, 1389 tets; angles in degrees)"
+build/bodt improve "$in" "$out" --mode bodt --iterations 20 --report "$report"
 echo
 echo "== bodt compare $in $out"
 build/bodt compare "$in" "$out"
-echo
-echo "== bodt report $in $out -o $report"
-build/bodt report "$in" "$out" -o "$report"
-echo "open $report in a browser: histograms, quality table, worst tets"
+echo "open $report in a browser: quality, histograms, the worst tets in three views, the run's steps"
