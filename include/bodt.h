@@ -831,6 +831,14 @@ BODT_API int bodt_mesh_read_ex(const char *path, uint32_t flags,
 BODT_API int bodt_mesh_read_format(const char *path, int format,
                                    uint32_t flags, bodt_mesh **mesh);
 
+/*
+ * The enum bodt_format that `path`'s extension names (".mesh": MEDIT, ".ele":
+ * TETGEN, ...), as bodt_mesh_read and bodt_mesh_write choose it, so that a
+ * program can check an output path before the work; BODT_ERR_UNSUPPORTED
+ * for any other, with the message in bodt_mesh_last_error(NULL).
+ */
+BODT_API int bodt_format_from_path(const char *path, int *format);
+
 /* Write to a file, format by extension as for bodt_mesh_read. */
 BODT_API int bodt_mesh_write(const bodt_mesh *mesh, const char *path);
 /* bodt_mesh_write() in the given enum bodt_format. */

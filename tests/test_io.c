@@ -752,6 +752,29 @@ static void test_read_message_bases(void **state) {
     assert_contains(bodt_mesh_last_error(NULL), "exclude each other");
 }
 
+/* bodt_format_from_path: the format bodt_mesh_read and bodt_mesh_write
+ * choose by the extension (any case), or BODT_ERR_UNSUPPORTED naming the
+ * path. */
+static void test_format_from_path(void **state) {
+    (void)state;
+    const struct {
+        const char *path;
+        int format;
+    } known[] = {{"a.mesh", BODT_FORMAT_MEDIT}, {"dir.x/a.MESHB", BODT_FORMAT_MEDIT_BINARY},
+                 {"a.node", BODT_FORMAT_TETGEN}, {"a.ele", BODT_FORMAT_TETGEN}, {"a.msh", BODT_FORMAT_GMSH},
+                 {"a.vtu", BODT_FORMAT_VTU},     {"a.vtk", BODT_FORMAT_VTK},   {"a.inp", BODT_FORMAT_ABAQUS}};
+    for (size_t k = 0; k < sizeof known / sizeof known[0]; ++k) {
+        int format = -1;
+        assert_int_equal(bodt_format_from_path(known[k].path, &format), BODT_OK);
+        assert_int_equal(format, known[k].format);
+    }
+    int format = -1;
+    assert_int_equal(bodt_format_from_path("dir.mesh/a", &format), BODT_ERR_UNSUPPORTED);
+    assert_contains(bodt_mesh_last_error(NULL), "'dir.mesh/a': unknown mesh format");
+    assert_int_equal(bodt_format_from_path(NULL, &format), BODT_ERR_INVALID_ARGUMENT);
+    assert_int_equal(bodt_format_from_path("a.mesh", NULL), BODT_ERR_INVALID_ARGUMENT);
+}
+
 /* Every Medit edge is a feature edge with its ref; Ridges (indices into
  * Edges) add nothing.  They are written back as Edges + Ridges naming every
  * edge and survive a round trip.  A ridge that is not one of the edges is a
@@ -1165,6 +1188,7 @@ int main(void) {
         cmocka_unit_test(test_vtk_handwritten),
         cmocka_unit_test(test_read_one_based),
         cmocka_unit_test(test_read_message_bases),
+        cmocka_unit_test(test_format_from_path),
         cmocka_unit_test(test_medit_ridges),
         cmocka_unit_test(test_read_inverted_flag),
         cmocka_unit_test(test_medit_good_reference),

@@ -148,6 +148,7 @@ module bodt
   public :: bodt_version_string, bodt_status_string, bodt_mesh_last_error
   public :: bodt_mesh_create, bodt_mesh_create_ex, bodt_mesh_destroy
   public :: bodt_mesh_read, bodt_mesh_read_ex, bodt_mesh_read_format, bodt_mesh_write, bodt_mesh_write_format
+  public :: bodt_format_from_path
   public :: bodt_mesh_set_regions, bodt_mesh_set_boundary_faces, bodt_mesh_set_fixed_vertices, &
             bodt_mesh_set_feature_edges, bodt_mesh_set_feature_edges_ex, bodt_mesh_set_corners, &
             bodt_mesh_set_vertex_refs
@@ -216,6 +217,12 @@ module bodt
       type(c_ptr), intent(out) :: mesh
       integer(c_int) :: status
     end function c_bodt_mesh_read_format
+    function c_bodt_format_from_path(path, format) bind(c, name='bodt_format_from_path') result(status)
+      import :: c_int, c_char
+      character(kind=c_char), intent(in) :: path(*)
+      integer(c_int), intent(out) :: format
+      integer(c_int) :: status
+    end function c_bodt_format_from_path
     function c_bodt_mesh_write_format(mesh, path, format) bind(c, name='bodt_mesh_write_format') result(status)
       import :: c_int, c_char, c_ptr
       type(c_ptr), value :: mesh
@@ -668,6 +675,16 @@ contains
     integer(c_int), intent(out), optional :: ierr
     call finish(c_bodt_mesh_write_format(mesh%ptr, c_path(path), BODT_FORMAT_AUTO), 'bodt_mesh_write', mesh, ierr)
   end subroutine bodt_mesh_write
+
+  ! The BODT_FORMAT_* that path's extension names; the message of a failure
+  ! in bodt_mesh_last_error().
+  subroutine bodt_format_from_path(path, format, ierr)
+    character(len=*), intent(in) :: path
+    integer(c_int), intent(out) :: format
+    integer(c_int), intent(out), optional :: ierr
+    type(bodt_mesh_t) :: none
+    call finish(c_bodt_format_from_path(c_path(path), format), 'bodt_format_from_path', none, ierr)
+  end subroutine bodt_format_from_path
 
   subroutine bodt_mesh_write_format(mesh, path, format, ierr)
     type(bodt_mesh_t), intent(inout) :: mesh

@@ -693,6 +693,14 @@ int bodt_mesh_read_format(const char* path, int format, uint32_t flags, bodt_mes
     return status;
 }
 
+int bodt_format_from_path(const char* path, int* format) {
+    return guarded(nullptr, [&] {
+        require(path != nullptr, "path is NULL");
+        require(format != nullptr, "format is NULL");
+        *format = static_cast<int>(bodt::format_from_path(path));
+    });
+}
+
 int bodt_mesh_write(const bodt_mesh* mesh, const char* path) {
     return bodt_mesh_write_format(mesh, path, BODT_FORMAT_AUTO);
 }

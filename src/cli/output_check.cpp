@@ -5,24 +5,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cstring>
 
 namespace bodt_cli {
 
 namespace {
-
-// The extension in lower case ("mesh"), or "" without one; as the library's.
-std::string extension(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    const size_t dot = path.find_last_of('.');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-    std::string ext = path.substr(dot + 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
 
 std::string directory_of(const std::string& path) {
     const size_t slash = path.find_last_of('/');
@@ -55,21 +43,9 @@ bool writable_file(const std::string& path, std::string& error) {
 bool output_format(const std::string& path, int format, int& resolved, std::string& error) {
     resolved = format;
     if (format != BODT_FORMAT_AUTO) return true;
-    const std::string ext = extension(path);
-    if (ext == "mesh") resolved = BODT_FORMAT_MEDIT;
-    else if (ext == "meshb") resolved = BODT_FORMAT_MEDIT_BINARY;
-    else if (ext == "node" || ext == "ele") resolved = BODT_FORMAT_TETGEN;
-    else if (ext == "msh") resolved = BODT_FORMAT_GMSH;
-    else if (ext == "vtu") resolved = BODT_FORMAT_VTU;
-    else if (ext == "vtk") resolved = BODT_FORMAT_VTK;
-    else if (ext == "inp") resolved = BODT_FORMAT_ABAQUS;
-    else {
-        error = "cannot write '" + path + "': unknown mesh format" +
-                (ext.empty() ? std::string(" (no extension)") : " '." + ext + "'") +
-                "; use .mesh, .meshb, .node, .ele, .msh, .vtu, .vtk or .inp, or give --format";
-        return false;
-    }
-    return true;
+    if (bodt_format_from_path(path.c_str(), &resolved) == BODT_OK) return true;
+    error = std::string("cannot write ") + bodt_mesh_last_error(nullptr) + ": --format gives it";
+    return false;
 }
 
 bool writable(const std::string& path, bool tetgen, std::string& error) {

@@ -37,9 +37,10 @@ MeshFormat format_from_path(const std::string& path) {
     if (ext == "vtu") return MeshFormat::Vtu;
     if (ext == "vtk") return MeshFormat::Vtk;
     if (ext == "inp") return MeshFormat::Abaqus;
-    throw Error(BODT_ERR_UNSUPPORTED, "'" + path +
-                                          "': unknown mesh format (expected .mesh, .meshb, .node, .ele, .msh, .vtu, "
-                                          ".vtk or .inp, or give the format)");
+    throw Error(BODT_ERR_UNSUPPORTED, "'" + path + "': unknown mesh format " +
+                                          (ext.empty() ? std::string("(no extension)") : "'." + ext + "'") +
+                                          " (expected .mesh, .meshb, .node, .ele, .msh, .vtu, .vtk or .inp, or "
+                                          "give the format)");
 }
 
 MeshFormat format_from_code(int code, const std::string& path) {

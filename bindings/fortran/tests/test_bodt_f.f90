@@ -556,6 +556,12 @@ contains
     call check_status(ierr, BODT_ERR_INVALID_ARGUMENT, 'an unknown format refused', mesh)
     call bodt_mesh_destroy(mesh)
 
+    call bodt_format_from_path('part.ELE', base)
+    call check(base == BODT_FORMAT_TETGEN, 'bodt_format_from_path: .ELE is TetGen')
+    call bodt_format_from_path('part.xyz', base, ierr=ierr)
+    call check(ierr == BODT_ERR_UNSUPPORTED, 'bodt_format_from_path: .xyz refused')
+    call check_contains(bodt_mesh_last_error(), 'unknown mesh format', 'bodt_format_from_path message')
+
     call bodt_mesh_read('no such dir/missing.mesh  ', back, ierr=ierr)
     call check_status(ierr, BODT_ERR_IO, 'a missing file', back)
     call check_contains(bodt_mesh_last_error(back), "'no such dir/missing.mesh'", &

@@ -64,7 +64,7 @@ from .errors import (
     UnsupportedError,
     WrongStateError,
 )
-from .mesh import INT_PARAMS, Mesh, dihedral_bin_edges
+from .mesh import INT_PARAMS, Mesh, dihedral_bin_edges, format_from_path
 from .results import (
     BoundaryFaces,
     FaceRegions,
@@ -110,6 +110,7 @@ __all__ = [
     "__version__",
     "cffi_cdef",
     "dihedral_bin_edges",
+    "format_from_path",
     "from_meshio",
     "library_path",
     "library_version",

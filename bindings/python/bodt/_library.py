@@ -83,6 +83,7 @@ _FUNCTIONS: dict[str, tuple[type | None, list[type]]] = {
     "bodt_mesh_read": (c_int, [c_char_p, POINTER(_mesh)]),
     "bodt_mesh_read_ex": (c_int, [c_char_p, c_uint32, POINTER(_mesh)]),
     "bodt_mesh_read_format": (c_int, [c_char_p, c_int, c_uint32, POINTER(_mesh)]),
+    "bodt_format_from_path": (c_int, [c_char_p, POINTER(c_int)]),
     "bodt_mesh_write": (c_int, [_mesh, c_char_p]),
     "bodt_mesh_write_format": (c_int, [_mesh, c_char_p, c_int]),
 }

@@ -53,6 +53,16 @@ def dihedral_bin_edges() -> np.ndarray:
     return edges
 
 
+def format_from_path(path: str | os.PathLike[str]) -> Format:
+    """The file format ``path``'s extension names, as Mesh.read and Mesh.write choose it (bodt_format_from_path).
+
+    Raises UnsupportedError for an extension that names none: a check of an output path before the work.
+    """
+    format_ = c_int()
+    check(lib.bodt_format_from_path(os.fsencode(path), byref(format_)), None)
+    return Format(format_.value)
+
+
 def _flags(accept_inverted: bool) -> CreateFlag:
     return CreateFlag.ACCEPT_INVERTED if accept_inverted else CreateFlag.DEFAULT
 
@@ -115,17 +125,19 @@ class Mesh:
         cls,
         path: str | os.PathLike[str],
         accept_inverted: bool = False,
-        base: int = 0,
+        base: int | str = 0,
         format: Format = Format.AUTO,  # noqa: A002 (bodt.h's name)
         int_dtype: DTypeLike = np.int64,
     ) -> "Mesh":
-        """A mesh from a file (bodt_mesh_read_format), counting from ``base`` (0 or 1).
+        """A mesh from a file (bodt_mesh_read_format), counting from ``base``: 0, 1, or "file" for the
+        file's own numbering (Medit 1, VTK 0; ``mesh.base`` then tells which).
 
-        The format is the extension's (.mesh, .meshb, .node/.ele, .msh, .vtu) unless ``format`` says.
+        The format is the extension's (.mesh, .meshb, .node/.ele, .msh, .vtu, .vtk) unless ``format`` says.
         """
-        if base not in (0, 1):
-            raise ValueError(f"base is {base}, not 0 or 1")
-        flags = _flags(accept_inverted) | (CreateFlag.ONE_BASED if base == 1 else CreateFlag.DEFAULT)
+        bases = {0: CreateFlag.DEFAULT, 1: CreateFlag.ONE_BASED, "file": CreateFlag.FILE_BASE}
+        if base not in bases:
+            raise ValueError(f"base is {base!r}, not 0, 1 or 'file'")
+        flags = _flags(accept_inverted) | bases[base]
         handle = c_void_p()
         check(lib.bodt_mesh_read_format(os.fsencode(path), int32(format, "format"), flags, byref(handle)), None)
         mesh = cls.__new__(cls)

@@ -619,8 +619,17 @@ class TestFiles(ErrorAssertions):
             np.testing.assert_array_equal(read.fixed_vertices, [14])
             np.testing.assert_array_equal(read.feature_edges, [[1, 2], [2, 3]])
             np.testing.assert_array_equal(read.corners, [1])
-        with self.assertRaisesRegex(ValueError, "base is 2, not 0 or 1"):
+        with bodt.Mesh.read(path, base="file") as read:  # Medit counts from 1
+            self.assertEqual(read.base, 1)
+            np.testing.assert_array_equal(read.tets, tets + 1)
+        with self.assertRaisesRegex(ValueError, "base is 2, not 0, 1 or 'file'"):
             bodt.Mesh.read(path, base=2)
+
+    def test_format_from_path(self):
+        self.assertEqual(bodt.format_from_path("a/b.MSH"), bodt.Format.GMSH)
+        self.assertEqual(bodt.format_from_path("b.ele"), bodt.Format.TETGEN)
+        with self.assertError(bodt.UnsupportedError, bodt.Status.UNSUPPORTED, "'b.xyz': unknown mesh format"):
+            bodt.format_from_path("b.xyz")
 
     def test_formats_chosen_explicitly(self):
         points, tets = meshes.box(2, jitter=0.2)
