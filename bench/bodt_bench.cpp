@@ -196,7 +196,7 @@ std::string ops_string(int ops) {
 }
 
 // The threads a sweep uses for BODT_PARAM_THREADS = requested, as the
-// library documents it: 0 is OpenMP's default, OMP_NUM_THREADS or else every
+// library documents it: 0 is OMP_NUM_THREADS when set, or else every
 // core.  (Whether the sweeps really share the work shows in the CPU time:
 // `parallelism` = CPU seconds / wall seconds of the steps.)
 int threads_for(int requested) {
@@ -1847,7 +1847,7 @@ std::string markdown(const std::vector<Row>& rows, const Options& opt, const std
         const std::string kept = repeats > 1 ? fmt(" (below 2e5 tets, the run of median time of %d)", repeats) : "";
         md += "\n## Size and speed\n\nThe box cases (.shuffled: the jittered box numbered at random): create s = "
               "the wall time of bodt_mesh_create; s = the steps' wall time" + kept + "; updates = vertices moved + moves "
-              "rejected (guarded vertex updates); threads = BODT_PARAM_THREADS as used (0 resolved to OpenMP's "
+              "rejected (guarded vertex updates); threads = BODT_PARAM_THREADS as used (0 resolved to the library's "
               "default); parallelism = CPU seconds / wall seconds of the steps; B/tet = heap growth across "
               "bodt_mesh_create per input tet, and that plus the growth from bodt_set_mode to the end of the steps "
               "per output tet; peak RSS of the child that ran it (the input arrays included until the create).\n\n";

@@ -545,8 +545,11 @@ enum bodt_param {
      * patches of free-form surfaces (a sphere's), which keep their
      * vertices. */
     BODT_PARAM_FIT_TOLERANCE = 21,
-    /* int in [0, 1024], default 1: threads of a smoothing sweep (OpenMP);
-     * 0 takes OpenMP's default (OMP_NUM_THREADS, else every core).  Vertices
+    /* int in [0, 1024], default 1: threads of a smoothing sweep and of the
+     * per-tet loops of a step; 0 takes OMP_NUM_THREADS when it is set, else
+     * every core.  Plain threads, not OpenMP's runtime (which would end the
+     * host process when it cannot start one): a thread that cannot be
+     * started leaves its share to the others, with the same result.  Vertices
      * are swept colour by colour, so the result is the same for any number
      * of threads.  One by default: a solver running a process per core (MPI)
      * would otherwise have more threads than cores, and a sweep waits for

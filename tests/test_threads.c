@@ -1,7 +1,7 @@
 /*
  * test_threads: BODT_PARAM_THREADS.  Its range and default, and that every
  * mode gives the same mesh, bit for bit, and the same step reports on 1, 2
- * and 5 threads and OpenMP's default: the sweeps move the vertices colour by colour, and within a
+ * and 5 threads and the default of 0: the sweeps move the vertices colour by colour, and within a
  * colour no two vertices share a tet, so the order the threads take them in
  * cannot matter.  A race (two threads moving neighbours at once) shows up as
  * a difference here, most surely in the ASan build's slower, more
@@ -52,7 +52,7 @@ static void test_param(void **state) {
     bodt_mesh *h = create_cleaned(jittered_box());
     int32_t threads = -7;
     assert_int_equal(bodt_get_param_int(h, BODT_PARAM_THREADS, &threads), BODT_OK);
-    assert_int_equal(threads, 1); /* opt-in: 0 is OpenMP's default */
+    assert_int_equal(threads, 1); /* opt-in: 0 is OMP_NUM_THREADS or every core */
     assert_int_equal(bodt_set_param_int(h, BODT_PARAM_THREADS, 3), BODT_OK);
     assert_int_equal(bodt_get_param_int(h, BODT_PARAM_THREADS, &threads), BODT_OK);
     assert_int_equal(threads, 3);
@@ -121,7 +121,7 @@ static void test_same_result_on_any_number_of_threads(void **state) {
                 {BODT_MODE_BODT_BASIC, -1},   {BODT_MODE_BODT, BODT_OP_SMOOTH},
                 {BODT_MODE_BODT, -1},         {BODT_MODE_OPT_WEIGHTED, -1},
                 {BODT_MODE_PHASED_ODT, -1},   {BODT_MODE_NODT, -1}};
-    const int32_t thread_counts[] = {0, 2, 5}; /* 0: OpenMP's default */
+    const int32_t thread_counts[] = {0, 2, 5}; /* 0: OMP_NUM_THREADS or every core */
     for (size_t i = 0; i < sizeof runs / sizeof runs[0]; ++i) {
         const run_result one = run(m, runs[i].mode, runs[i].ops, 1);
         int32_t moved = 0;

@@ -2,6 +2,7 @@
 
 #include "bodt.h"
 #include "common/error.hpp"
+#include "common/parallel.hpp"
 #include "mesh/vertex_colouring.hpp"
 
 #include <algorithm>
@@ -90,42 +91,46 @@ struct OwnedFace {
 void TetMesh::build_neighbors(int base, int threads) {
     const int32_t nt = num_tets(), nv = num_vertices();
     neighbors.assign(tets.size(), Tet{-1, -1, -1, -1});
-    int32_t first_bad = nt;
-#pragma omp parallel num_threads(threads) reduction(min : first_bad)
-    {
+    // Each thread's lowest tet with a face in more than two tets, or a
+    // neighbour on the same side of a shared face.
+    std::vector<int32_t> bad(static_cast<size_t>(std::max(1, threads)), nt);
+    ChunkCounter chunks(nv, 256);
+    on_threads(threads, [&](int me) {
+        int32_t& first_bad = bad[static_cast<size_t>(me)];
         std::vector<OwnedFace> faces;
-#pragma omp for schedule(dynamic, 256)
-        for (int32_t v = 0; v < nv; ++v) {
-            faces.clear();
-            for (const int32_t* s = star_begin(v); s != star_end(v); ++s) {
-                // v is the smallest vertex of the face opposite corner i
-                // when no other corner but i is smaller than v.
-                const Tet& q = tets[*s];
-                int smaller = 0, below = -1;
-                for (int k = 0; k < 4; ++k)
-                    if (q[k] < v) ++smaller, below = k;
-                if (smaller > 1) continue;
-                for (int i = 0; i < 4; ++i) {
-                    if (q[i] == v || (smaller == 1 && i != below)) continue;
-                    int32_t lo = std::numeric_limits<int32_t>::max(), hi = -1;
+        for (int64_t begin, end; chunks.next(begin, end);)
+            for (int32_t v = static_cast<int32_t>(begin); v < end; ++v) {
+                faces.clear();
+                for (const int32_t* s = star_begin(v); s != star_end(v); ++s) {
+                    // v is the smallest vertex of the face opposite corner i
+                    // when no other corner but i is smaller than v.
+                    const Tet& q = tets[*s];
+                    int smaller = 0, below = -1;
                     for (int k = 0; k < 4; ++k)
-                        if (k != i && q[k] != v) lo = std::min(lo, q[k]), hi = std::max(hi, q[k]);
-                    faces.push_back({(static_cast<uint64_t>(lo) << 32) | static_cast<uint32_t>(hi), 4 * *s + i});
+                        if (q[k] < v) ++smaller, below = k;
+                    if (smaller > 1) continue;
+                    for (int i = 0; i < 4; ++i) {
+                        if (q[i] == v || (smaller == 1 && i != below)) continue;
+                        int32_t lo = std::numeric_limits<int32_t>::max(), hi = -1;
+                        for (int k = 0; k < 4; ++k)
+                            if (k != i && q[k] != v) lo = std::min(lo, q[k]), hi = std::max(hi, q[k]);
+                        faces.push_back({(static_cast<uint64_t>(lo) << 32) | static_cast<uint32_t>(hi), 4 * *s + i});
+                    }
+                }
+                std::sort(faces.begin(), faces.end());
+                for (size_t a = 0, b; a < faces.size(); a = b) {
+                    for (b = a + 1; b < faces.size() && faces[b].key == faces[a].key;) ++b;
+                    const int32_t t0 = faces[a].side / 4, i0 = faces[a].side % 4;
+                    if (b - a > 2) first_bad = std::min(first_bad, t0);  // sorted: t0 is the group's lowest
+                    if (b - a != 2) continue;
+                    const int32_t t1 = faces[a + 1].side / 4, i1 = faces[a + 1].side % 4;
+                    neighbors[t0][i0] = t1;
+                    neighbors[t1][i1] = t0;
+                    if (tets[t0][i0] == tets[t1][i1]) first_bad = std::min(first_bad, t0);
                 }
             }
-            std::sort(faces.begin(), faces.end());
-            for (size_t a = 0, b; a < faces.size(); a = b) {
-                for (b = a + 1; b < faces.size() && faces[b].key == faces[a].key;) ++b;
-                const int32_t t0 = faces[a].side / 4, i0 = faces[a].side % 4;
-                if (b - a > 2) first_bad = std::min(first_bad, t0);  // sorted: t0 is the group's lowest
-                if (b - a != 2) continue;
-                const int32_t t1 = faces[a + 1].side / 4, i1 = faces[a + 1].side % 4;
-                neighbors[t0][i0] = t1;
-                neighbors[t1][i1] = t0;
-                if (tets[t0][i0] == tets[t1][i1]) first_bad = std::min(first_bad, t0);
-            }
-        }
-    }
+    });
+    const int32_t first_bad = *std::min_element(bad.begin(), bad.end());
     if (first_bad == nt) return;
     const int32_t t = first_bad;
     for (int i = 0; i < 4; ++i) {

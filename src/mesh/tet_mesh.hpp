@@ -154,7 +154,7 @@ public:
     bool is_interior_free(int32_t v) const { return vflags[v] == 0; }
 
     // Rebuild incidence, neighbours and vertex flags from points, tets,
-    // regions and markers (the neighbours on `threads` OpenMP threads).
+    // regions and markers (the neighbours on `threads` threads).
     // Throws Error(BODT_ERR_BAD_MESH) with a message using index base
     // `base` when the connectivity is not a valid mesh.
     void build_topology(int base, int threads = 1);

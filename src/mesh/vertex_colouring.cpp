@@ -1,5 +1,7 @@
 #include "mesh/vertex_colouring.hpp"
 
+#include "common/parallel.hpp"
+
 #include <algorithm>
 
 namespace bodt {
@@ -151,29 +153,30 @@ ReleaseLists release_lists(const TetMesh& mesh, const VertexColouring& colouring
     ReleaseLists out;
     out.offsets.assign(static_cast<size_t>(n) + 1, 0);
     // Counted, then filled, vertex by vertex (each independent of the others).
-#pragma omp parallel num_threads(threads)
-    {
-        std::vector<std::pair<int32_t, int32_t>> higher;
-#pragma omp for schedule(static)
-        for (int32_t v = 0; v < n; ++v) {
-            higher_neighbours(mesh, colour, v, higher);
-            out.offsets[static_cast<size_t>(v) + 1] = static_cast<int32_t>(higher.size());
+    using Higher = std::vector<std::pair<int32_t, int32_t>>;
+    const auto each_vertex = [&](auto&& visit) {
+        ChunkCounter chunks(n, 4096);
+        on_threads(threads, [&](int) {
+            Higher higher;
+            for (int64_t begin, end; chunks.next(begin, end);)
+                for (int32_t v = static_cast<int32_t>(begin); v < end; ++v) {
+                    higher_neighbours(mesh, colour, v, higher);
+                    visit(v, higher);
+                }
+        });
+    };
+    each_vertex([&](int32_t v, const Higher& higher) {
+        out.offsets[static_cast<size_t>(v) + 1] = static_cast<int32_t>(higher.size());
+    });
+    for (int32_t v = 0; v < n; ++v) out.offsets[v + 1] += out.offsets[v];
+    out.vertex.resize(static_cast<size_t>(out.offsets[n]));
+    out.pairs.resize(static_cast<size_t>(out.offsets[n]));
+    each_vertex([&](int32_t v, const Higher& higher) {
+        for (size_t k = 0; k < higher.size(); ++k) {
+            out.vertex[static_cast<size_t>(out.offsets[v]) + k] = higher[k].first;
+            out.pairs[static_cast<size_t>(out.offsets[v]) + k] = higher[k].second;
         }
-#pragma omp single
-        {
-            for (int32_t v = 0; v < n; ++v) out.offsets[v + 1] += out.offsets[v];
-            out.vertex.resize(static_cast<size_t>(out.offsets[n]));
-            out.pairs.resize(static_cast<size_t>(out.offsets[n]));
-        }
-#pragma omp for schedule(static)
-        for (int32_t v = 0; v < n; ++v) {
-            higher_neighbours(mesh, colour, v, higher);
-            for (size_t k = 0; k < higher.size(); ++k) {
-                out.vertex[static_cast<size_t>(out.offsets[v]) + k] = higher[k].first;
-                out.pairs[static_cast<size_t>(out.offsets[v]) + k] = higher[k].second;
-            }
-        }
-    }
+    });
     return out;
 }
 

@@ -57,7 +57,7 @@ struct ReleaseLists {
     std::vector<int32_t> vertex;   // w
     std::vector<int32_t> pairs;    // its pairs in v's star
 };
-// Made on `threads` OpenMP threads.
+// Made on `threads` threads (common/parallel.hpp).
 ReleaseLists release_lists(const TetMesh& mesh, const VertexColouring& colouring, int threads);
 
 }  // namespace bodt

@@ -27,7 +27,7 @@ struct Params {
     double density_split = 2.0 / 3.0;   // BODT_PARAM_DENSITY_SPLIT (gamma, sec. 3.5.1)
     double density_collapse = 1.5;      // BODT_PARAM_DENSITY_COLLAPSE (delta)
     double fit_tolerance = 1e-5;   // BODT_PARAM_FIT_TOLERANCE
-    int32_t threads = 1;           // BODT_PARAM_THREADS: 0 = OpenMP's default
+    int32_t threads = 1;           // BODT_PARAM_THREADS: 0 = default_threads()
     double ascent_angle = 30.0;    // BODT_PARAM_ASCENT_ANGLE, degrees (0: off)
 };
 

@@ -1,5 +1,7 @@
 #include "quality/mesh_quality.hpp"
 
+#include "common/parallel.hpp"
+
 #include <algorithm>
 
 namespace bodt {
@@ -71,18 +73,15 @@ void shapes_of(const TetMesh& mesh, int32_t first, size_t n, double* rows, TetSh
 
 ShapeCache tet_shapes(const TetMesh& mesh, int threads) {
     ShapeCache shapes(mesh.tets.size());
-    const int32_t nt = mesh.num_tets();
-    const int32_t blocks = static_cast<int32_t>((static_cast<size_t>(nt) + kBlock - 1) / kBlock);
-#pragma omp parallel num_threads(threads)
-    {
+    const int64_t nt = mesh.num_tets();
+    // Chunks of whole blocks, so every block is the same on any number of threads.
+    for_chunks(threads, nt, 64 * static_cast<int64_t>(kBlock), [&](int, int64_t begin, int64_t end) {
         double rows[12 * kBlock];
-#pragma omp for schedule(static)
-        for (int32_t b = 0; b < blocks; ++b) {
-            const int32_t first = b * static_cast<int32_t>(kBlock);
-            const size_t n = std::min(kBlock, static_cast<size_t>(nt - first));
-            shapes_of(mesh, first, n, rows, shapes.data() + first);
+        for (int64_t first = begin; first < end; first += static_cast<int64_t>(kBlock)) {
+            const size_t n = std::min(kBlock, static_cast<size_t>(end - first));
+            shapes_of(mesh, static_cast<int32_t>(first), n, rows, shapes.data() + first);
         }
-    }
+    });
     return shapes;
 }
 
@@ -90,15 +89,24 @@ QualityExtremes quality_extremes(const ShapeCache& shapes, int threads) {
     // tet_shape() counts a tet that is not positively oriented as 0 and 180
     // degrees, as summarize_quality does; cosines are compared before the
     // arc cosine, which is decreasing: acos(largest cosine) is the smallest angle.
+    struct Extremes {
+        double cos_of_min = -1.0, cos_of_max = 1.0, min_stretch = 1.0;
+    };
+    std::vector<Extremes> partial(static_cast<size_t>(std::max(1, threads)));
+    for_chunks(threads, static_cast<int64_t>(shapes.size()), 1 << 16, [&](int me, int64_t begin, int64_t end) {
+        Extremes& e = partial[static_cast<size_t>(me)];
+        for (int64_t t = begin; t < end; ++t) {
+            const TetShape& s = shapes[static_cast<size_t>(t)];
+            e.cos_of_min = std::max(e.cos_of_min, s.cosines.of_min);
+            e.cos_of_max = std::min(e.cos_of_max, s.cosines.of_max);
+            e.min_stretch = std::min(e.min_stretch, s.stretch);
+        }
+    });
     double cos_of_min = -1.0, cos_of_max = 1.0, min_stretch = 1.0;
-    const int64_t n = static_cast<int64_t>(shapes.size());
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : cos_of_min) \
-    reduction(min : cos_of_max, min_stretch)
-    for (int64_t t = 0; t < n; ++t) {
-        const TetShape& s = shapes[static_cast<size_t>(t)];
-        cos_of_min = std::max(cos_of_min, s.cosines.of_min);
-        cos_of_max = std::min(cos_of_max, s.cosines.of_max);
-        min_stretch = std::min(min_stretch, s.stretch);
+    for (const Extremes& e : partial) {
+        cos_of_min = std::max(cos_of_min, e.cos_of_min);
+        cos_of_max = std::min(cos_of_max, e.cos_of_max);
+        min_stretch = std::min(min_stretch, e.min_stretch);
     }
     constexpr double kDegrees = 180.0 / M_PI;
     return {std::acos(cos_of_min) * kDegrees, std::acos(cos_of_max) * kDegrees, min_stretch, {cos_of_min, cos_of_max}};

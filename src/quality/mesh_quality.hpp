@@ -33,7 +33,7 @@ ShapeCache tet_shapes(const TetMesh& mesh, int threads);
 
 // The extremes of summarize_quality alone (the same values) from the
 // mesh's tet_shapes(), without an arc cosine per angle, on `threads`
-// OpenMP threads: what a step reports, and the cosines they come from.
+// threads: what a step reports, and the cosines they come from.
 struct QualityExtremes {
     double min_dihedral, max_dihedral, min_stretch;
     CosineRange cosines;

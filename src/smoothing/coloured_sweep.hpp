@@ -11,6 +11,7 @@
 // neighbours in its release list: both are made once per connectivity.
 #pragma once
 
+#include "common/parallel.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "mesh/vertex_colouring.hpp"
 
@@ -18,31 +19,19 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <exception>
 #include <memory>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 namespace bodt {
 
 // The threads for `items` units of work (vertices, tets) under
-// BODT_PARAM_THREADS = `requested` (0: OpenMP's default, OMP_NUM_THREADS or
-// every core): at least 4096 items each, since a barrier costs more than a
-// small share of work; 1 without OpenMP.
+// BODT_PARAM_THREADS = `requested` (0: default_threads()): at least 4096
+// items each, since starting a thread costs more than a small share of work.
 inline int sweep_threads(int32_t requested, size_t items) {
-#ifdef _OPENMP
     const size_t most = std::max<size_t>(1, items / 4096);
-    return static_cast<int>(std::min<size_t>(most, requested > 0 ? requested : omp_get_max_threads()));
-#else
-    (void)requested;
-    (void)items;
-    return 1;
-#endif
+    return static_cast<int>(std::min<size_t>(most, requested > 0 ? requested : default_threads()));
 }
 
 namespace detail {
@@ -105,33 +94,20 @@ std::vector<State> coloured_sweep(const TetMesh& mesh, int threads, const State&
     const auto release = [&pending](int32_t w, int32_t k) {
         return pending[w].fetch_sub(k, std::memory_order_acq_rel) == k;
     };
-    std::atomic<int32_t> next_run{0};
+    ChunkCounter runs(n, kRun);
     std::atomic<bool> failed{false};
-    std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
-#pragma omp parallel num_threads(threads)
-    {
-#ifdef _OPENMP
-        const size_t me = static_cast<size_t>(omp_get_thread_num());
-#else
-        const size_t me = 0;
-#endif
+    on_threads(threads, [&](int me) {
         std::vector<int32_t> ready;
         try {
-            while (!failed.load(std::memory_order_relaxed)) {
-                const int32_t begin = next_run.fetch_add(kRun, std::memory_order_relaxed);
-                if (begin >= n) break;
-                const int32_t end = std::min(n, begin + kRun);
-                for (int32_t v = begin; v < end && !failed.load(std::memory_order_relaxed); ++v)
+            for (int64_t begin, end; !failed.load(std::memory_order_relaxed) && runs.next(begin, end);)
+                for (int32_t v = static_cast<int32_t>(begin); v < end && !failed.load(std::memory_order_relaxed); ++v)
                     if (colour[v] >= 0 && lower[v] == 0)
-                        detail::visit_from(colour, lists, v, body, states[me], ready, release);
-            }
+                        detail::visit_from(colour, lists, v, body, states[static_cast<size_t>(me)], ready, release);
         } catch (...) {
-            errors[me] = std::current_exception();
             failed.store(true, std::memory_order_relaxed);
+            throw;
         }
-    }
-    for (const std::exception_ptr& e : errors)
-        if (e) std::rethrow_exception(e);
+    });
     return states;
 }
 
