@@ -73,37 +73,42 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <functional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core_checks.hpp"
+#include "file_text.hpp"
 
 using bodt::Error;
 using bodt::MeshData;
 
 namespace {
 
+using io_test::read_text;
+using io_test::write_text;
+
 std::string g_data, g_scratch;
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail_msg("cannot read %s", path.c_str());
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void spit(const std::string& path, const std::string& content) {
-    std::ofstream out(path, std::ios::binary);
-    out << content;
-    if (!out) fail_msg("cannot write %s", path.c_str());
-}
 
 std::string scratch(const std::string& name) { return g_scratch + "/" + name; }
 std::string data(const std::string& name) { return g_data + "/gmsh/" + name; }
+
+// The mesh in `path`; an error reading it fails the case.
+MeshData read_or_fail(const char* what, const std::string& path) {
+    try {
+        return bodt::read_gmsh(path);
+    } catch (const Error& e) {
+        CHECK(false, "%s", e.what());
+    }
+    return {};
+}
+
+// The mesh of `text`, written to scratch/name and read back.
+MeshData read_written(const char* what, const std::string& name, const std::string& text) {
+    const std::string path = scratch(name);
+    write_text(path, text);
+    return read_or_fail(what, path);
+}
 
 double tet_volume(const MeshData& d, size_t t) {
     const double* p[4];
@@ -236,10 +241,10 @@ void test_round_trip(void** /*state*/) {
                 // and again from what was read: the same file
                 const std::string again = path + ".again.msh";
                 bodt::write_gmsh(again, bodt::read_gmsh(path), v.version, v.binary);
-                CHECK(slurp(again) == slurp(path), "rewriting what was read changes the file");
+                CHECK(read_text(again) == read_text(path), "rewriting what was read changes the file");
                 if (v.version == 41 && !v.binary) {
                     // a curve per edge ref (-4, 0, 20), a physical group per nonzero one
-                    const std::string text = slurp(path);
+                    const std::string text = read_text(path);
                     CHECK(text.find("$Entities\n3 3 2 4\n") != std::string::npos, "entity counts");
                     CHECK(text.find("\n1 20 \"edge ref 20\"\n") != std::string::npos &&
                               text.find("\n1 -4 \"edge ref -4\"\n") != std::string::npos &&
@@ -269,7 +274,7 @@ void test_round_trip(void** /*state*/) {
     }
     // Ref-0 edges are in a curve without physical group: the only physical
     // group is the fixed vertices'.
-    const std::string text = slurp(scratch("round_plain_41_ascii.msh"));
+    const std::string text = read_text(scratch("round_plain_41_ascii.msh"));
     CHECK(text.find("$PhysicalNames\n1\n0 1 \"fixed vertices\"\n$EndPhysicalNames") != std::string::npos,
           "physical groups other than the fixed vertices'");
 }
@@ -279,12 +284,7 @@ void test_gmsh_files(void** /*state*/) {
     MeshData first;
     for (const char* name : names) {
         const char* what = name;
-        MeshData d;
-        try {
-            d = bodt::read_gmsh(data(name));
-        } catch (const Error& e) {
-            CHECK(false, "%s", e.what());
-        }
+        const MeshData d = read_or_fail(what, data(name));
         CHECK(d.base == 1, "base %d", d.base);
         CHECK(d.xyz.size() == 3 * 23, "%zu vertices", d.xyz.size() / 3);
         check_two_cubes(d, what);
@@ -313,12 +313,7 @@ void test_gmsh_files(void** /*state*/) {
 void test_entity_regions(void** /*state*/) {
     for (const char* name : {"box_nophysical41.msh", "box_nophysical22.msh"}) {
         const char* what = name;
-        MeshData d;
-        try {
-            d = bodt::read_gmsh(data(name));
-        } catch (const Error& e) {
-            CHECK(false, "%s", e.what());
-        }
+        const MeshData d = read_or_fail(what, data(name));
         check_two_cubes(d, what);
         CHECK(d.edge_refs == std::vector<int32_t>(20, 0), "%zu feature edges, expected 20 with ref 0",
               d.edge_refs.size());
@@ -391,14 +386,7 @@ const char* kSparse22 =
 void test_sparse_tags(void** /*state*/) {
     {
         const char* what = "sparse 4.1";
-        const std::string path = scratch("sparse41.msh");
-        spit(path, kSparse41);
-        MeshData d;
-        try {
-            d = bodt::read_gmsh(path);
-        } catch (const Error& e) {
-            CHECK(false, "%s", e.what());
-        }
+        const MeshData d = read_written(what, "sparse41.msh", kSparse41);
         CHECK(d.base == 0, "base %d", d.base);
         // file order: 40 10 30 20 50 -> 0 1 2 3 4
         CHECK(d.xyz == (std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1}), "coordinates");
@@ -411,14 +399,7 @@ void test_sparse_tags(void** /*state*/) {
     }
     {
         const char* what = "sparse 2.2";
-        const std::string path = scratch("sparse22.msh");
-        spit(path, kSparse22);
-        MeshData d;
-        try {
-            d = bodt::read_gmsh(path);
-        } catch (const Error& e) {
-            CHECK(false, "%s", e.what());
-        }
+        const MeshData d = read_written(what, "sparse22.msh", kSparse22);
         CHECK(d.base == 0, "base %d", d.base);
         CHECK(d.tets == (std::vector<int32_t>{0, 1, 2, 3}) && d.regions == std::vector<int32_t>{3}, "tet");
         CHECK(d.triangles == (std::vector<int32_t>{0, 1, 2}) && d.tri_markers == std::vector<int32_t>{4},
@@ -533,14 +514,7 @@ const char* kShuffled41 =
 
 void test_order(void** /*state*/) {
     const char* what = "shuffled 4.1";
-    const std::string path = scratch("shuffled41.msh");
-    spit(path, kShuffled41);
-    MeshData d;
-    try {
-        d = bodt::read_gmsh(path);
-    } catch (const Error& e) {
-        CHECK(false, "%s", e.what());
-    }
+    const MeshData d = read_written(what, "shuffled41.msh", kShuffled41);
     // vertex i is the node tagged i + 1, whatever block holds it
     CHECK(d.base == 1, "base %d", d.base);
     CHECK(d.xyz == (std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1}), "coordinates");
@@ -775,7 +749,7 @@ void test_layout_without_groups(void** /*state*/) {
     {
         const char* what = "a single surface without a physical group";
         const std::string path = scratch("one_surface.msh");
-        spit(path,
+        write_text(path,
              "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
              "$Entities\n0 0 1 1\n4 0 0 0 1 1 1 0 0\n1 0 0 0 1 1 1 0 1 4\n$EndEntities\n"
              "$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n"
@@ -833,8 +807,8 @@ std::string patched(std::string text, size_t offset, T value) {
 }
 
 void test_malformed(void** /*state*/) {
-    const std::string a41 = slurp(data("box41.msh")), b41 = slurp(data("box41_bin.msh"));
-    const std::string a22 = slurp(data("box22.msh")), b22 = slurp(data("box22_bin.msh"));
+    const std::string a41 = read_text(data("box41.msh")), b41 = read_text(data("box41_bin.msh"));
+    const std::string a22 = read_text(data("box22.msh")), b22 = read_text(data("box22_bin.msh"));
     struct Case {
         std::string name, content;
     };
@@ -977,7 +951,7 @@ void test_malformed(void** /*state*/) {
 
     for (const Case& c : cases) {
         const std::string path = scratch("bad_" + c.name + ".msh");
-        spit(path, c.content);
+        write_text(path, c.content);
         expect_io_error(c.name.c_str(), path);
     }
     const char* what = "malformed";

@@ -77,7 +77,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <set>
@@ -86,30 +85,20 @@
 #include <vector>
 
 #include "core_checks.hpp"
+#include "broken_files.hpp"
+#include "file_text.hpp"
 #include "kuhn_block_data.hpp"
-
-#include "alloc_probe.hpp"
 
 namespace {
 
-using io_test::g_largest_alloc;
-using io_test::kAllocLimit;
+using io_test::line_of;
+using io_test::read_text;
+using io_test::replace;
+using io_test::write_text;
 
 std::string g_dir = "test_io_vtk_files";
 
 std::string scratch(const std::string& name) { return g_dir + "/" + name; }
-
-void write_text(const std::string& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // ------------------------------------------------------------ big-endian bytes (test's own)
 
@@ -261,19 +250,6 @@ using io_test::Tri;
 
 // ------------------------------------------------------------ helpers
 
-std::string replace(const char* what, std::string s, const std::string& from, const std::string& to) {
-    const size_t at = s.find(from);
-    CHECK(at != std::string::npos, "'%s' not in the template", from.c_str());
-    return s.replace(at, from.size(), to);
-}
-
-// The 1-based line of the first `marker` in `text`.
-long line_of(const char* what, const std::string& text, const std::string& marker) {
-    const size_t at = text.find(marker);
-    CHECK(at != std::string::npos, "'%s' not in the file", marker.c_str());
-    return 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
-}
-
 // Runs f, which must throw bodt::Error(BODT_ERR_IO); returns the message.
 template <class F>
 std::string io_error(const char* what, F f) {
@@ -324,21 +300,9 @@ bool position(const std::string& msg, const std::string& path, long* line, long*
 std::string malformed_problem(const std::string& name, const std::string& text, const std::string& needle,
                               Where where) {
     const std::string path = scratch(name);
-    write_text(path, text);
-    g_largest_alloc = 0;
     std::string msg;
-    try {
-        bodt::read_vtk(path);
-        return "read without an error";
-    } catch (const bodt::Error& e) {
-        msg = e.what();
-        if (e.status() != BODT_ERR_IO) return "status " + std::to_string(e.status()) + ": " + msg;
-    } catch (const std::exception& e) {
-        return std::string("not a bodt::Error: ") + e.what();
-    }
-    const size_t largest = g_largest_alloc;
-    if (largest > kAllocLimit)
-        return "an allocation of " + std::to_string(largest) + " bytes for a file of " + std::to_string(text.size());
+    const std::string refused = io_test::refusal_problem(path, text, bodt::read_vtk, msg);
+    if (!refused.empty()) return refused;
     long line, byte;
     if (!position(msg, path, &line, &byte))
         return "'" + msg + "' does not start with '<path>:<line>: ' or '<path>: byte <n>: '";
@@ -1438,19 +1402,6 @@ void test_malformed(void**) {
     CHECK(msg.find(missing) != std::string::npos, "'%s'", msg.c_str());
 }
 
-// xorshift64*: the same sequence everywhere.
-struct Bits {
-    uint64_t s;
-    explicit Bits(uint64_t seed) : s(seed * 2685821657736338717ull + 1) {}
-    uint64_t next() {
-        s ^= s >> 12;
-        s ^= s << 25;
-        s ^= s >> 27;
-        return s * 2685821657736338717ull;
-    }
-    size_t below(size_t n) { return static_cast<size_t>(next() % n); }
-};
-
 void test_mutations(void**) {
     const char* what = "mutations";
     bodt::MeshData d = kuhn_block(1, 0);
@@ -1462,52 +1413,17 @@ void test_mutations(void**) {
                                             bin42(),     bin51(),  meshio_binary()};
     const std::string path = scratch("mutated.vtk");
     const char* tokens[] = {"-1", "0", "4294967296", "1e300", "nan", "\n", " ", "99999999999", "%", "\0"};
-    Bits r(2024);
+    const auto positioned = [&](const std::string& m) {
+        long line, byte;
+        return position(m, path, &line, &byte);
+    };
+    io_test::Bits r{2024 * 2685821657736338717ull + 1};  // the state seed 2024 has always given
     int ok = 0, errors = 0;
     for (int iter = 0; iter < 3000; ++iter) {
         std::string s = seeds[static_cast<size_t>(iter) % seeds.size()];
-        const size_t changes = 1 + r.below(3);
-        for (size_t k = 0; k < changes && !s.empty(); ++k) {
-            const size_t at = r.below(s.size());
-            switch (r.below(5)) {
-                case 0: s[at] = static_cast<char>(r.next()); break;
-                case 1: s[at] = static_cast<char>('0' + r.below(10)); break;
-                case 2: s.resize(at); break;
-                case 3: s.erase(at, 1 + r.below(8)); break;
-                default: {
-                    const char* t = tokens[r.below(sizeof tokens / sizeof tokens[0])];
-                    s.insert(at, t, std::max<size_t>(1, std::strlen(t)));
-                }
-            }
-        }
-        write_text(path, s);
-        g_largest_alloc = 0;
-        try {
-            const bodt::MeshData m = bodt::read_vtk(path);
-            const int64_t nv = static_cast<int64_t>(m.xyz.size() / 3);
-            CHECK(m.base == 0 && m.xyz.size() % 3 == 0 && m.tets.size() % 4 == 0 && !m.tets.empty(),
-                  "iteration %d: sizes", iter);
-            CHECK(m.regions.empty() || m.regions.size() == m.tets.size() / 4, "iteration %d: regions", iter);
-            CHECK(m.tri_markers.size() * 3 == m.triangles.size(), "iteration %d: markers", iter);
-            CHECK(m.edge_refs.size() * 2 == m.feature_edges.size(), "iteration %d: edge refs", iter);
-            CHECK(m.vertex_refs.empty() || static_cast<int64_t>(m.vertex_refs.size()) == nv, "iteration %d: refs",
-                  iter);
-            for (const auto* list : {&m.tets, &m.triangles, &m.feature_edges, &m.fixed, &m.corners})
-                for (int32_t v : *list)
-                    CHECK(v >= 0 && v < nv, "iteration %d: vertex %d of %lld", iter, v, (long long)nv);
-            for (double x : m.xyz) CHECK(std::isfinite(x), "iteration %d: coordinate %g", iter, x);
-            ++ok;
-        } catch (const bodt::Error& e) {
-            const std::string m = e.what();
-            long line, byte;
-            CHECK(e.status() == BODT_ERR_IO, "iteration %d: status %d: %s", iter, e.status(), m.c_str());
-            CHECK(position(m, path, &line, &byte), "iteration %d: no position in '%s'", iter, m.c_str());
-            ++errors;
-        } catch (const std::exception& e) {
-            CHECK(false, "iteration %d: not a bodt::Error: %s", iter, e.what());
-        }
-        CHECK(g_largest_alloc <= kAllocLimit, "iteration %d: an allocation of %zu bytes", iter,
-              static_cast<size_t>(g_largest_alloc));
+        io_test::mutate(s, r, tokens);
+        if (io_test::check_mutant(what, iter, path, s, bodt::read_vtk, positioned)) ++ok;
+        else ++errors;
     }
     CHECK(ok > 100 && errors > 100, "%d read, %d errors", ok, errors);
 }
@@ -1517,10 +1433,7 @@ void test_mutations(void**) {
 int main(int argc, char** argv) {
     if (argc > 1) g_dir = argv[1];
     mkdir(g_dir.c_str(), 0777);
-    const uint16_t probe = 1;
-    uint8_t first;
-    std::memcpy(&first, &probe, 1);
-    if (first != 1) {
+    if (!little_endian_host()) {
         std::printf("test_io_vtk: big-endian host, skipped (the byte builder assumes little-endian)\n");
         return 0;
     }

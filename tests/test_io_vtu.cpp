@@ -56,35 +56,26 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core_checks.hpp"
+#include "file_text.hpp"
 #include "kuhn_block_data.hpp"
 #include "vtu_bytes.hpp"
 
 namespace {
 
+using io_test::b64;
+using io_test::put_le;
+using io_test::read_text;
+using io_test::replace;
+using io_test::unb64;
+using io_test::write_text;
+
 std::string g_dir = "test_io_vtu_files";
 
 std::string scratch(const std::string& name) { return g_dir + "/" + name; }
-
-void write_text(const std::string& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-using io_test::b64;
-using io_test::put_le;
-using io_test::unb64;
 
 // A binary DataArray body: header (UInt32 or UInt64) + data, encoded together
 // (VTK) or separately (meshio's other convention).
@@ -133,12 +124,6 @@ long expect_malformed(const char* what, const std::string& name, const std::stri
     CHECK(end != rest && line >= 1 && std::strncmp(end, ": ", 2) == 0, "no line number in '%s'", msg.c_str());
     CHECK(msg.find(needle) != std::string::npos, "'%s' does not mention '%s'", msg.c_str(), needle);
     return line;
-}
-
-std::string replace(const char* what, std::string s, const std::string& from, const std::string& to) {
-    const size_t at = s.find(from);
-    CHECK(at != std::string::npos, "'%s' not in the template", from.c_str());
-    return s.replace(at, from.size(), to);
 }
 
 // A ParaView-style ASCII file: two tets, a marked triangle, a line, a vertex
@@ -818,10 +803,7 @@ void test_abaqus(void**) {
 int main(int argc, char** argv) {
     if (argc > 1) g_dir = argv[1];
     mkdir(g_dir.c_str(), 0777);
-    const uint16_t probe = 1;
-    uint8_t first;
-    std::memcpy(&first, &probe, 1);
-    if (first != 1) {
+    if (!little_endian_host()) {
         std::printf("test_io_vtu: big-endian host, skipped (the hand-written binaries assume little-endian)\n");
         return 0;
     }

@@ -36,45 +36,32 @@
 #include <zlib.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core_checks.hpp"
+#include "broken_files.hpp"
+#include "file_text.hpp"
 #include "vtu_bytes.hpp"
-
-#include "alloc_probe.hpp"
 
 namespace {
 
 using io_test::b64;
-using io_test::g_largest_alloc;
-using io_test::kAllocLimit;
+using io_test::line_of;
 using io_test::put_le;
+using io_test::read_text;
+using io_test::replace;
+using io_test::write_text;
 
 std::string g_data;
 std::string g_dir = "test_io_vtu_compressed_files";
 
 std::string scratch(const std::string& name) { return g_dir + "/" + name; }
-
-void write_text(const std::string& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // ------------------------------------------------------------ the sample mesh
 
@@ -222,20 +209,6 @@ std::string sample_file(const Layout& l, const std::vector<uint8_t>* types_bytes
     return b.file(body);
 }
 
-std::string replace(const char* what, std::string s, const std::string& from, const std::string& to) {
-    const size_t at = s.find(from);
-    CHECK(at != std::string::npos, "'%s' not in the file", from.c_str());
-    return at == std::string::npos ? s : s.replace(at, from.size(), to);
-}
-
-// The line of the first occurrence of `needle` in `text` (-1: none, which
-// no message has).
-long line_of(const std::string& text, const std::string& needle) {
-    const size_t at = text.find(needle);
-    if (at == std::string::npos) return -1;
-    return 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
-}
-
 // Reads `text` from scratch/name and returns what is wrong with the outcome
 // ("" when nothing): it must be an Error(BODT_ERR_IO) "<path>:<line>: ..."
 // on `line` whose message contains `needle`, with no allocation over
@@ -243,21 +216,9 @@ long line_of(const std::string& text, const std::string& needle) {
 std::string malformed_problem(const std::string& name, const std::string& text, const std::string& needle,
                               long line) {
     const std::string path = scratch(name);
-    write_text(path, text);
-    g_largest_alloc = 0;
     std::string msg;
-    try {
-        bodt::read_vtu(path);
-        return "read without an error";
-    } catch (const bodt::Error& e) {
-        msg = e.what();
-        if (e.status() != BODT_ERR_IO) return "status " + std::to_string(e.status()) + ": " + msg;
-    } catch (const std::exception& e) {
-        return std::string("not a bodt::Error: ") + e.what();
-    }
-    if (g_largest_alloc > kAllocLimit)
-        return "an allocation of " + std::to_string(g_largest_alloc) + " bytes for a file of " +
-               std::to_string(text.size());
+    const std::string refused = io_test::refusal_problem(path, text, bodt::read_vtu, msg);
+    if (!refused.empty()) return refused;
     if (msg.compare(0, path.size() + 1, path + ":") != 0) return "'" + msg + "' does not start with the path";
     char* end = nullptr;
     const long got = std::strtol(msg.c_str() + path.size() + 1, &end, 10);
@@ -368,7 +329,7 @@ void test_hostile(void**) {
             l.zlib = true;
             const std::string tag = std::to_string(static_cast<int>(where)) + std::to_string(header64);
             auto zfile = [&](const std::vector<uint8_t>& bytes) { return sample_file(l, &bytes); };
-            auto types_line = [&](const std::string& text) { return line_of(text, "Name=\"types\""); };
+            auto types_line = [&](const std::string& text) { return line_of(what, text, "Name=\"types\""); };
             auto zbad = [&](const char* name, const std::vector<uint8_t>& bytes, const std::string& needle) {
                 const std::string text = zfile(bytes);
                 bad(std::string(name) + tag + ".vtu", text, needle, types_line(text));
@@ -418,12 +379,14 @@ void test_hostile(void**) {
         put_header(lie, 1000000, false);
         lie.insert(lie.end(), types.begin(), types.end());
         std::string text = sample_file(l, &lie);
-        bad("size_lie" + tag + ".vtu", text, "the header says 1000000 bytes of data, but at most", line_of(text, "Name=\"types\""));
+        bad("size_lie" + tag + ".vtu", text, "the header says 1000000 bytes of data, but at most",
+            line_of(what, text, "Name=\"types\""));
         const std::vector<uint8_t> short_header = {4, 0};
         text = sample_file(l, &short_header);
-        bad("header_cut" + tag + ".vtu", text, "the header: 1 x 4 bytes needed, but at most", line_of(text, "Name=\"types\""));
+        bad("header_cut" + tag + ".vtu", text, "the header: 1 x 4 bytes needed, but at most",
+            line_of(what, text, "Name=\"types\""));
         const std::string good = sample_file(l);
-        const long types = line_of(good, "Name=\"types\"");
+        const long types = line_of(what, good, "Name=\"types\"");
         const std::string off = good.substr(good.find("offset=\"", good.find("Name=\"types\"")), 30);
         const std::string off_value = off.substr(8, off.find('"', 8) - 8);
         bad("offset_beyond" + tag + ".vtu", replace(what, good, "offset=\"" + off_value + "\"", "offset=\"99999\""),
@@ -435,52 +398,42 @@ void test_hostile(void**) {
         bad("no_underscore" + tag + ".vtu", replace(what, good, "   _", "   "),
             where == Where::AppendedRaw ? "raw appended data must start with '_'"
                                         : "the appended data does not start with '_'",
-            line_of(good, "<AppendedData") + (where == Where::AppendedRaw));
+            line_of(what, good, "<AppendedData") + (where == Where::AppendedRaw));
         bad("encoding" + tag + ".vtu",
             replace(what, good, where == Where::AppendedRaw ? "encoding=\"raw\"" : "encoding=\"base64\"",
                     "encoding=\"gzip\""),
-            "unknown encoding \"gzip\"", line_of(good, "<AppendedData"));
+            "unknown encoding \"gzip\"", line_of(what, good, "<AppendedData"));
         const std::string no_section = good.substr(0, good.find("<AppendedData")) + "</VTKFile>\n";
         bad("no_section" + tag + ".vtu", no_section, "is appended, but the file has no <AppendedData>",
-            line_of(no_section, "Name=\"Points\""));
+            line_of(what, no_section, "Name=\"Points\""));
     }
     {
         Layout l;
         l.where = Where::AppendedRaw;
         const std::string good = sample_file(l);
         const std::string text = good.substr(0, good.find("</AppendedData>"));
-        bad("raw_unclosed.vtu", text, "raw <AppendedData> without </AppendedData>", line_of(text, "<AppendedData"));
+        bad("raw_unclosed.vtu", text, "raw <AppendedData> without </AppendedData>",
+            line_of(what, text, "<AppendedData"));
         const std::string empty = good.substr(0, good.find("<AppendedData")) + "<AppendedData encoding=\"raw\"/>\n</VTKFile>\n";
-        bad("raw_empty.vtu", empty, "is beyond the 0 bytes of appended data", line_of(empty, "Name=\"Points\""));
+        bad("raw_empty.vtu", empty, "is beyond the 0 bytes of appended data", line_of(what, empty, "Name=\"Points\""));
         l.where = Where::AppendedBase64;
         const std::string b = sample_file(l);
         bad("second_section.vtu", replace(what, b, "</VTKFile>", "<AppendedData encoding=\"base64\">_</AppendedData></VTKFile>"),
-            "a second <AppendedData>", line_of(b, "</VTKFile>"));
+            "a second <AppendedData>", line_of(what, b, "</VTKFile>"));
         const size_t us = b.find("   _") + 4 + 3;  // inside the first array's header
         std::string bang = b;
         bang[us] = '!';
-        bad("base64_garbage.vtu", bang, "appended data at offset 0 + 3: invalid character '!'", line_of(b, "Name=\"ref\""));
+        bad("base64_garbage.vtu", bang, "appended data at offset 0 + 3: invalid character '!'",
+            line_of(what, b, "Name=\"ref\""));
         l.where = Where::InlineTogether;
         const std::string in = sample_file(l);
         bad("child.vtu", replace(what, in, "<DataArray type=\"UInt8\" Name=\"types\" format=\"binary\">",
                                  "<DataArray type=\"UInt8\" Name=\"types\" format=\"binary\"><Foo/>"),
-            "DataArray types contains an element <Foo>", line_of(in, "Name=\"types\""));
+            "DataArray types contains an element <Foo>", line_of(what, in, "Name=\"types\""));
     }
     for (const std::string& f : failures) CHECK(false, "%s", f.c_str());
     CHECK(n >= 30, "only %d cases", n);
 }
-
-// xorshift64*: the same sequence everywhere.
-struct Random {
-    uint64_t s;
-    uint64_t next() {
-        s ^= s >> 12;
-        s ^= s << 25;
-        s ^= s >> 27;
-        return s * 2685821657736338717ull;
-    }
-    size_t below(size_t n) { return static_cast<size_t>(next() % n); }
-};
 
 void test_mutations(void**) {
     const char* what = "mutations";
@@ -496,53 +449,21 @@ void test_mutations(void**) {
         }
     seeds.push_back(read_text(g_data + "/vtu/vtk_appended_raw_zlib.vtu"));
     seeds.push_back(read_text(g_data + "/vtu/vtk_appended_base64_zlib.vtu"));
-    Random r{0x9E3779B97F4A7C15ull};
+    io_test::Bits r{0x9E3779B97F4A7C15ull};
     const char* tokens[] = {"\xFF\xFF\xFF\xFF", "\x7F", "\0", "////", "AAAA", "=", "_", "<", "\"", "9999999999"};
     const std::string path = scratch("mutant.vtu");
+    // "<path>:<line>: "
+    const auto positioned = [&](const std::string& m) {
+        char* end = nullptr;
+        return m.compare(0, path.size() + 1, path + ":") == 0 &&
+               std::strtol(m.c_str() + path.size() + 1, &end, 10) > 0 && std::strncmp(end, ": ", 2) == 0;
+    };
     int ok = 0, errors = 0;
     for (int iter = 0; iter < 3000; ++iter) {
         std::string s = seeds[r.below(seeds.size())];
-        for (int k = 1 + static_cast<int>(r.below(3)); k > 0 && !s.empty(); --k) {
-            const size_t at = r.below(s.size());
-            switch (r.below(5)) {
-                case 0: s[at] = static_cast<char>(r.next()); break;
-                case 1: s[at] = static_cast<char>('0' + r.below(10)); break;
-                case 2: s.resize(at); break;
-                case 3: s.erase(at, 1 + r.below(8)); break;
-                default: {
-                    const char* t = tokens[r.below(sizeof tokens / sizeof tokens[0])];
-                    s.insert(at, t, std::max<size_t>(1, std::strlen(t)));
-                }
-            }
-        }
-        write_text(path, s);
-        g_largest_alloc = 0;
-        try {
-            const bodt::MeshData m = bodt::read_vtu(path);
-            const int64_t nv = static_cast<int64_t>(m.xyz.size() / 3);
-            CHECK(m.base == 0 && m.xyz.size() % 3 == 0 && m.tets.size() % 4 == 0 && !m.tets.empty(),
-                  "iteration %d: sizes", iter);
-            CHECK(m.regions.empty() || m.regions.size() == m.tets.size() / 4, "iteration %d: regions", iter);
-            CHECK(m.tri_markers.size() * 3 == m.triangles.size(), "iteration %d: markers", iter);
-            CHECK(m.vertex_refs.empty() || static_cast<int64_t>(m.vertex_refs.size()) == nv, "iteration %d: refs",
-                  iter);
-            for (const auto* list : {&m.tets, &m.triangles, &m.feature_edges, &m.fixed, &m.corners})
-                for (int32_t v : *list) CHECK(v >= 0 && v < nv, "iteration %d: vertex %d of %lld", iter, v, (long long)nv);
-            for (double x : m.xyz) CHECK(std::isfinite(x), "iteration %d: coordinate %g", iter, x);
-            ++ok;
-        } catch (const bodt::Error& e) {
-            const std::string m = e.what();
-            CHECK(e.status() == BODT_ERR_IO, "iteration %d: status %d: %s", iter, e.status(), m.c_str());
-            char* end = nullptr;
-            const bool has_line = m.compare(0, path.size() + 1, path + ":") == 0 &&
-                                  std::strtol(m.c_str() + path.size() + 1, &end, 10) > 0 && std::strncmp(end, ": ", 2) == 0;
-            CHECK(has_line, "iteration %d: no '<path>:<line>: ' in '%s'", iter, m.c_str());
-            ++errors;
-        } catch (const std::exception& e) {
-            CHECK(false, "iteration %d: not a bodt::Error: %s", iter, e.what());
-        }
-        CHECK(g_largest_alloc <= kAllocLimit, "iteration %d: an allocation of %zu bytes", iter,
-              static_cast<size_t>(g_largest_alloc));
+        io_test::mutate(s, r, tokens);
+        if (io_test::check_mutant(what, iter, path, s, bodt::read_vtu, positioned)) ++ok;
+        else ++errors;
     }
     CHECK(ok > 100 && errors > 100, "%d read, %d errors", ok, errors);
 }
@@ -557,10 +478,7 @@ int main(int argc, char** argv) {
     g_data = argv[1];
     if (argc > 2) g_dir = argv[2];
     mkdir(g_dir.c_str(), 0777);
-    const uint16_t probe = 1;
-    uint8_t first;
-    std::memcpy(&first, &probe, 1);
-    if (first != 1) {
+    if (!little_endian_host()) {
         std::printf("test_io_vtu_compressed: big-endian host, skipped (the built files assume little-endian)\n");
         return 0;
     }

@@ -59,6 +59,13 @@ private:
             ++pos_;
     }
 
+    // Moves past `c` when it comes next; whether it did.
+    bool skip(char c) {
+        if (pos_ >= s_.size() || s_[pos_] != c) return false;
+        ++pos_;
+        return true;
+    }
+
     bool literal(const char* word) {
         size_t n = 0;
         while (word[n]) ++n;
@@ -92,56 +99,39 @@ private:
 
     bool object(JsonValue& v, int depth) {
         v.type = JsonValue::Type::Object;
-        ++pos_;
-        space();
-        if (pos_ < s_.size() && s_[pos_] == '}') {
-            ++pos_;
-            return true;
-        }
-        while (true) {
+        return elements('}', [&] {
             space();
             if (pos_ >= s_.size() || s_[pos_] != '"') return fail("expected a member name in quotes");
             std::string key;
             if (!string(key)) return false;
             space();
-            if (pos_ >= s_.size() || s_[pos_] != ':') return fail("expected ':'");
-            ++pos_;
+            if (!skip(':')) return fail("expected ':'");
             v.members.emplace_back(std::move(key), JsonValue());
-            if (!value(v.members.back().second, depth + 1)) return false;
-            space();
-            if (pos_ < s_.size() && s_[pos_] == ',') {
-                ++pos_;
-                continue;
-            }
-            if (pos_ < s_.size() && s_[pos_] == '}') {
-                ++pos_;
-                return true;
-            }
-            return fail("expected ',' or '}'");
-        }
+            return value(v.members.back().second, depth + 1);
+        });
     }
 
     bool array(JsonValue& v, int depth) {
         v.type = JsonValue::Type::Array;
+        return elements(']', [&] {
+            v.items.emplace_back();
+            return value(v.items.back(), depth + 1);
+        });
+    }
+
+    // The elements of an object or array, from its opening bracket to
+    // `close`: none, or element() for each, separated by commas.
+    template <class Element>
+    bool elements(char close, Element element) {
         ++pos_;
         space();
-        if (pos_ < s_.size() && s_[pos_] == ']') {
-            ++pos_;
-            return true;
-        }
+        if (skip(close)) return true;
         while (true) {
-            v.items.emplace_back();
-            if (!value(v.items.back(), depth + 1)) return false;
+            if (!element()) return false;
             space();
-            if (pos_ < s_.size() && s_[pos_] == ',') {
-                ++pos_;
-                continue;
-            }
-            if (pos_ < s_.size() && s_[pos_] == ']') {
-                ++pos_;
-                return true;
-            }
-            return fail("expected ',' or ']'");
+            if (skip(',')) continue;
+            if (skip(close)) return true;
+            return fail(std::string("expected ',' or '") + close + "'");
         }
     }
 
@@ -228,16 +218,11 @@ private:
             while (pos_ < s_.size() && s_[pos_] >= '0' && s_[pos_] <= '9') ++pos_;
             return pos_ > from;
         };
-        if (pos_ < s_.size() && s_[pos_] == '-') ++pos_;
-        if (pos_ < s_.size() && s_[pos_] == '0') ++pos_;
-        else if (!digits()) return fail("expected a value");
-        if (pos_ < s_.size() && s_[pos_] == '.') {
-            ++pos_;
-            if (!digits()) return fail("expected digits after '.'");
-        }
-        if (pos_ < s_.size() && (s_[pos_] == 'e' || s_[pos_] == 'E')) {
-            ++pos_;
-            if (pos_ < s_.size() && (s_[pos_] == '+' || s_[pos_] == '-')) ++pos_;
+        skip('-');
+        if (!skip('0') && !digits()) return fail("expected a value");
+        if (skip('.') && !digits()) return fail("expected digits after '.'");
+        if (skip('e') || skip('E')) {
+            if (!skip('+')) skip('-');
             if (!digits()) return fail("expected digits in the exponent");
         }
         v.type = JsonValue::Type::Number;

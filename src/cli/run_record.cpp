@@ -51,6 +51,8 @@ T integer_of(const JsonValue* v) {
 
 std::string string_of(const JsonValue* v) { return v && v->is_string() ? v->text : std::string(); }
 
+bool bool_of(const JsonValue* v) { return v && v->type == JsonValue::Type::Bool && v->boolean; }
+
 bodt_quality quality_of(const JsonValue* q) {
     bodt_quality out{};
     out.size = sizeof out;
@@ -132,8 +134,7 @@ bool run_from_json(const JsonValue& root, RunRecord& run, std::string& error) {
     run.ops = string_of(root.get("ops"));
     run.max_steps = integer_of<int32_t>(root.get("max_steps"));
     run.threads = integer_of<int32_t>(root.get("threads"));
-    const JsonValue* keep = root.get("keep_surface");
-    run.keep_surface = keep && keep->type == JsonValue::Type::Bool && keep->boolean;
+    run.keep_surface = bool_of(root.get("keep_surface"));
     if (const JsonValue* o = root.get("options"); o && o->type == JsonValue::Type::Array)
         for (const JsonValue& v : o->items)
             if (v.is_string()) run.options.push_back(v.text);
@@ -162,8 +163,7 @@ bool run_from_json(const JsonValue& root, RunRecord& run, std::string& error) {
     run.flips = integer_of<int64_t>(root.get("flips"));
     run.vertices_inserted = integer_of<int64_t>(root.get("vertices_inserted"));
     run.edges_collapsed = integer_of<int64_t>(root.get("edges_collapsed"));
-    const JsonValue* converged = root.get("converged");
-    run.converged = converged && converged->type == JsonValue::Type::Bool && converged->boolean;
+    run.converged = bool_of(root.get("converged"));
     if (const JsonValue* t = root.get("seconds")) {
         for (int p = 0; p < static_cast<int>(Phase::Count); ++p) run.seconds[p] = number_of(t->get(kSecondsKeys[p]));
         run.seconds_total = number_of(t->get("total"));

@@ -25,51 +25,18 @@ import subprocess
 import sys
 import time
 
-FAILURES = []
-
-
-def check(cond, what):
-    if not cond:
-        FAILURES.append(what)
-        print("FAIL:", what)
-    return cond
-
-
-def run(bodt, *args):
-    p = subprocess.run([bodt] + list(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                       universal_newlines=True, timeout=60)
-    return p.returncode, p.stdout, p.stderr
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import medit_files  # noqa: E402
+from checks import FAILURES, check, exit_status, run  # noqa: E402
+from medit_files import write_medit  # noqa: E402
 
 
 # ------------------------------------------------------------ independent geometry
 
 def read_medit_full(path):
     """Vertices, 0-based tets, tet refs and [(0-based triangle, ref)] of a Medit file."""
-    tokens = []
-    with open(path) as f:
-        for line in f:
-            tokens += line.split("#", 1)[0].split()
-    pts, tets, refs, tris, k = [], [], [], [], 0
-    while k < len(tokens):
-        t = tokens[k]
-        k += 1
-        if t == "Vertices":
-            n = int(tokens[k]); k += 1
-            for _ in range(n):
-                pts.append(tuple(float(x) for x in tokens[k:k + 3])); k += 4
-        elif t == "Tetrahedra":
-            n = int(tokens[k]); k += 1
-            for _ in range(n):
-                tets.append(tuple(int(x) - 1 for x in tokens[k:k + 4])); refs.append(int(tokens[k + 4])); k += 5
-        elif t == "Triangles":
-            n = int(tokens[k]); k += 1
-            for _ in range(n):
-                tris.append((tuple(int(x) - 1 for x in tokens[k:k + 3]), int(tokens[k + 3]))); k += 4
-        elif t in ("RequiredVertices", "Corners"):
-            n = int(tokens[k]); k += 1 + n
-        elif t in ("Dimension", "MeshVersionFormatted"):
-            k += 1
-    return pts, tets, refs, tris
+    m = medit_files.read_medit(path)
+    return m["points"], m["tets"], m["regions"], list(zip(m["triangles"], m["markers"]))
 
 
 def read_medit(path):
@@ -144,19 +111,24 @@ def check_histogram(hist, angles):
               "bin %d [%g, %g): %d, expected %d..%d" % (b, EDGES[b], EDGES[b + 1], hist[b], lo, hi))
 
 
+def one_json_object(out, what):
+    """The JSON object that `what` printed as its one line of output, or None."""
+    lines = [l for l in out.splitlines() if l.strip()]
+    check(len(lines) == 1, "%s printed %d lines, expected one: %r" % (what, len(lines), out))
+    try:
+        obj = json.loads(out)
+    except ValueError as e:
+        check(False, "%s: not JSON (%s): %r" % (what, e, out))
+        return None
+    check(isinstance(obj, dict), "%s: the JSON is not an object" % what)
+    return obj
+
+
 def quality_json(args, path):
     code, out, err = run(args.bodt, "quality", path, "--json")
     if not check(code == 0, "bodt quality %s --json exited %d: %s" % (path, code, err)):
         return None
-    lines = [l for l in out.splitlines() if l.strip()]
-    check(len(lines) == 1, "--json printed %d lines, expected one: %r" % (len(lines), out))
-    try:
-        obj = json.loads(out)
-    except ValueError as e:
-        check(False, "not JSON (%s): %r" % (e, out))
-        return None
-    check(isinstance(obj, dict), "the JSON is not an object")
-    return obj
+    return one_json_object(out, "quality --json")
 
 
 # ----------------------------------------------------------------------- cases
@@ -284,18 +256,6 @@ def write_jittered_box(path, n, size, jitter, seed):
     else:
         raise RuntimeError("no seed gave a valid jittered box")
     write_medit(path, pts, tets)
-
-
-def write_medit(path, pts, tets):
-    """A Medit .mesh with vertices and tets (0-based in, 1-based in the file)."""
-    with open(path, "w") as f:
-        f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % len(pts))
-        for p in pts:
-            f.write("%.17g %.17g %.17g 0\n" % tuple(p))
-        f.write("Tetrahedra\n%d\n" % len(tets))
-        for t in tets:
-            f.write("%d %d %d %d 1\n" % tuple(v + 1 for v in t))
-        f.write("End\n")
 
 
 def check_valid_box(path, what, size=2.0):
@@ -718,17 +678,7 @@ def write_marked_box(path, pts=None):
     p0, tets, refs, _ = read_medit_full(os.path.join(here, "..", "data", "box2.mesh"))
     tris = [(f, side_marker(p0, f)) for f in boundary_triangles(tets)]
     pts = pts or p0
-    with open(path, "w") as f:
-        f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % len(pts))
-        for p in pts:
-            f.write("%.17g %.17g %.17g 0\n" % tuple(p))
-        f.write("Tetrahedra\n%d\n" % len(tets))
-        for t, r in zip(tets, refs):
-            f.write("%d %d %d %d %d\n" % (tuple(v + 1 for v in t) + (r,)))
-        f.write("Triangles\n%d\n" % len(tris))
-        for t, m in tris:
-            f.write("%d %d %d %d\n" % (tuple(v + 1 for v in t) + (m,)))
-        f.write("End\n")
+    write_medit(path, pts, tets, refs, [t for t, _ in tris], [m for _, m in tris])
     return pts, tets, refs, tris
 
 
@@ -1308,12 +1258,8 @@ def case_improve_json(args):
         os.remove(dst)
     code, out, err = run(args.bodt, "improve", src, dst, "--iterations", "8", "--ops", "flip,insert", "--json")
     check(code == 0, "improve --json: exit %d %r" % (code, err))
-    lines = [l for l in out.splitlines() if l.strip()]
-    check(len(lines) == 1, "improve --json printed %d lines: %r" % (len(lines), out))
-    try:
-        j = json.loads(out)
-    except ValueError as e:
-        check(False, "improve --json is not JSON (%s): %r" % (e, out))
+    j = one_json_object(out, "improve --json")
+    if j is None:
         return
     for key in ("version", "input", "output", "mode", "ops", "max_steps", "threads", "options", "parameters",
                 "steps", "converged", "flips", "vertices_inserted", "edges_collapsed", "seconds", "quality_before",
@@ -1436,11 +1382,7 @@ def main():
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     globals()["case_" + args.case](args)
-    if FAILURES:
-        print("%d check(s) failed" % len(FAILURES))
-        return 1
-    print("ok")
-    return 0
+    return exit_status()
 
 
 if __name__ == "__main__":

@@ -31,14 +31,9 @@ import sys
 import tempfile
 import zlib
 
-FAILURES = []
-
-
-def check(cond, what):
-    if not cond:
-        FAILURES.append(what)
-        print("FAIL:", what)
-    return cond
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from checks import check, exit_status  # noqa: E402
+from medit_files import write_medit  # noqa: E402
 
 
 def close(a, b, rel=1e-12):
@@ -561,12 +556,7 @@ def write_bumpy_slab(path, n=100):
                 if vol < 0:
                     t[0], t[1] = t[1], t[0]
                 tets.append(t)
-    with open(path, "w") as f:
-        f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % len(pts))
-        f.writelines("%.17g %.17g %.17g 0\n" % p for p in pts)
-        f.write("Tetrahedra\n%d\n" % len(tets))
-        f.writelines("%d %d %d %d 1\n" % tuple(v + 1 for v in t) for t in tets)
-        f.write("End\n")
+    write_medit(path, pts, tets)
 
 
 def main():
@@ -747,11 +737,7 @@ def main():
     n = sum(near(counts, rgb, 2) for rgb in shades)
     check(n >= 100000, "the screenshot shows the shaded views (%d pixels of their shades)" % n)
 
-    if FAILURES:
-        print("%d check(s) failed" % len(FAILURES))
-        return 1
-    print("ok")
-    return 0
+    return exit_status()
 
 
 if __name__ == "__main__":

@@ -23,7 +23,10 @@ import shutil
 import subprocess
 import sys
 
-from box_mesh import kuhn_box, write_medit
+from box_mesh import kuhn_box
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from medit_files import write_medit  # noqa: E402
 
 E = 1000.0     # Young's modulus
 P = 2.5        # pressure on x = L, against its outward normal (pushes towards x = 0)

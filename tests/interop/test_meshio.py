@@ -25,29 +25,21 @@ Uses the real meshio (Debian's python3-meshio, 5.0):
                    the .msh itself (regions 1 and 2, marker 10, edge ref 20)
 """
 import argparse
+import functools
 import os
-import subprocess
 import sys
 
 import meshio
 import numpy as np
 
-from box_mesh import kuhn_box, read_medit, write_medit
+from box_mesh import kuhn_box
 
-FAILURES = []
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import checks  # noqa: E402
+from checks import check  # noqa: E402
+from medit_files import read_medit, write_medit  # noqa: E402
 
-
-def check(cond, what):
-    if not cond:
-        FAILURES.append(what)
-        print("FAIL:", what)
-    return cond
-
-
-def run(bodt, *args):
-    p = subprocess.run([bodt] + list(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                       universal_newlines=True, timeout=120)
-    return p.returncode, p.stdout, p.stderr
+run = functools.partial(checks.run, timeout=120)
 
 
 def sample(n=(3, 2, 2), jitter=0.2):
@@ -212,11 +204,8 @@ def main():
     ours_read_by_meshio(args)
     meshio_read_by_ours(args)
     gmsh_through_meshio(args)
-    if FAILURES:
-        print("%d check(s) failed" % len(FAILURES))
-        sys.exit(1)
-    print("ok (meshio %s)" % meshio.__version__)
+    return checks.exit_status("ok (meshio %s)" % meshio.__version__)
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

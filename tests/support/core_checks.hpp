@@ -1,6 +1,7 @@
 // Helpers shared by the white-box C++ tests (those linking bodt_core):
 // seeded random numbers and rotations, a generated mesh's arrays for
-// build_mesh, and CHECK, a condition check with a printf-style message.  Header only; include it after the other headers.
+// build_mesh, the host's byte order, and CHECK, a condition check with a
+// printf-style message.  Header only; include it after the other headers.
 #ifndef BODT_TEST_CORE_CHECKS_HPP
 #define BODT_TEST_CORE_CHECKS_HPP
 
@@ -13,6 +14,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 
 #include "test_util.h"
 
@@ -49,6 +51,15 @@ inline Eigen::Matrix3d random_rotation(Rng& rng) {
     Eigen::Quaterniond q(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
     q.normalize();
     return q.toRotationMatrix();
+}
+
+// Whether the host stores the low byte first (the byte builders of the
+// reader tests assume it; on other hosts they skip).
+inline bool little_endian_host() {
+    const uint16_t probe = 1;
+    uint8_t first;
+    std::memcpy(&first, &probe, 1);
+    return first == 1;
 }
 
 // Fails the test unless `cond`, with the message (printf arguments), the
