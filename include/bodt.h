@@ -768,7 +768,10 @@ enum bodt_format {
     /* .mesh, Medit ASCII: Vertices (ref = vertex ref), Tetrahedra (ref =
      * region id), Triangles (ref = face marker), Edges (feature edges with
      * their refs; written with Ridges naming them all), Corners (corners),
-     * RequiredVertices (fixed vertices); other known sections are skipped. */
+     * RequiredVertices (fixed vertices); other known sections are skipped.
+     * A section other than Vertices may come more than once (meshio writes
+     * one per cell block): repeated sections are appended in file order;
+     * a second Vertices section is an error. */
     BODT_FORMAT_MEDIT = 1,
     BODT_FORMAT_MEDIT_BINARY = 2,   /* .meshb, the same sections in binary    */
     /* .node / .ele (give either; the other and an optional .face with

@@ -9,7 +9,9 @@
  * hand-written VTK file as Mesquite writes it; hand-written TetGen files
  * numbered from 0 and from 1, with and without node markers; a TetGen file
  * in Stellar's negative orientation; hand-written Medit files whose every
- * Edges entry is a feature edge (Ridges checked, adding nothing); malformed
+ * Edges entry is a feature edge (Ridges checked, adding nothing), and with
+ * repeated sections (as meshio writes them: appended in file order; a second
+ * Vertices section refused with its line); malformed
  * files (Medit, TetGen, VTK), each refused with BODT_ERR_IO and a message
  * naming the file and line; unknown extensions; unwritable paths.
  *
@@ -876,6 +878,83 @@ static void test_medit_good_reference(void **state) {
     bodt_mesh_destroy(h);
 }
 
+/* meshio writes a Medit section per cell block (a Tetrahedra section per
+ * region, a Triangles section per marker): repeated Tetrahedra, Triangles,
+ * Edges, Corners and RequiredVertices sections are appended in file order,
+ * and Ridges number the edges of all Edges sections (ridge 2 is the edge of
+ * the second).  A second Vertices section is refused, naming its line and
+ * the first's. */
+static void test_medit_repeated_sections(void **state) {
+    (void)state;
+    const char *path = path_of("repeated.mesh");
+    write_text(path, "MeshVersionFormatted 2\nDimension 3\n"
+                     "Vertices\n8\n"
+                     "0 0 0 0\n1 0 0 0\n0 1 0 0\n1 1 0 0\n0 0 1 0\n1 0 1 0\n0 1 1 0\n1 1 1 0\n"
+                     "Tetrahedra\n2\n1 2 4 8 1\n1 3 7 8 1\n"
+                     "Triangles\n1\n1 2 4 5\n"
+                     "Edges\n1\n1 2 7\n"
+                     "Corners\n1\n1\n"
+                     "Tetrahedra\n3\n1 5 6 8 2\n1 2 8 6 2\n1 3 8 4 2\n"
+                     "Triangles\n2\n1 4 3 6\n1 2 6 7\n"
+                     "Edges\n1\n1 3 8\n"
+                     "Ridges\n1\n2\n"
+                     "RequiredVertices\n1\n8\n"
+                     "Tetrahedra\n1\n1 5 8 7 3\n"
+                     "Corners\n1\n8\n"
+                     "RequiredVertices\n1\n2\n"
+                     "End\n");
+    bodt_mesh *h = read_ok(path, 0);
+    int32_t tets[24], regions[6];
+    const int32_t expected_tets[24] = {0, 1, 3, 7, 0, 2, 6, 7, 0, 4, 5, 7, 0, 1, 7, 5, 0, 2, 7, 3, 0, 4, 7, 6};
+    const int32_t expected_regions[6] = {1, 1, 2, 2, 2, 3};
+    assert_int_equal(bodt_mesh_get_tets(h, tets, 24), BODT_OK);
+    assert_memory_equal(tets, expected_tets, sizeof expected_tets);
+    assert_int_equal(bodt_mesh_get_regions(h, regions, 6), BODT_OK);
+    assert_memory_equal(regions, expected_regions, sizeof expected_regions);
+    /* The three triangles of the two sections, each with its marker, among
+     * the cube's 12 faces and the interfaces between the regions. */
+    int32_t nbf = 0, tris[3 * 32], markers[32];
+    assert_int_equal(bodt_mesh_get_counts(h, NULL, NULL, &nbf), BODT_OK);
+    assert_in_range(nbf, 12, 32);
+    assert_int_equal(bodt_mesh_get_boundary_faces(h, tris, markers, (size_t)nbf), BODT_OK);
+    const int32_t expected_faces[3][3] = {{0, 1, 3}, {0, 2, 3}, {0, 1, 5}}; /* markers 5, 6, 7; sorted, 0-based */
+    int marked = 0;
+    for (int f = 0; f < nbf; ++f) {
+        if (markers[f] == 0) continue;
+        ++marked;
+        int32_t t[3] = {tris[3 * f], tris[3 * f + 1], tris[3 * f + 2]};
+        for (int i = 0; i < 2; ++i) /* sort the three */
+            for (int j = 0; j < 2 - i; ++j)
+                if (t[j] > t[j + 1]) {
+                    const int32_t x = t[j];
+                    t[j] = t[j + 1];
+                    t[j + 1] = x;
+                }
+        assert_in_range(markers[f], 5, 7);
+        const int32_t *e = expected_faces[markers[f] - 5];
+        assert_true(t[0] == e[0] && t[1] == e[1] && t[2] == e[2]);
+    }
+    assert_int_equal(marked, 3);
+    int32_t nedges = -1, edges[4], refs[2];
+    const int32_t expected_edges[4] = {0, 1, 0, 2}, expected_refs[2] = {7, 8};
+    assert_int_equal(bodt_mesh_get_feature_edges_ex(h, &nedges, edges, refs, 2), BODT_OK);
+    assert_int_equal(nedges, 2);
+    assert_memory_equal(edges, expected_edges, sizeof expected_edges);
+    assert_memory_equal(refs, expected_refs, sizeof expected_refs);
+    int32_t corners[8], fixed[8];
+    assert_int_equal(bodt_mesh_get_corners(h, corners, 8), BODT_OK);
+    assert_int_equal(bodt_mesh_get_fixed_vertices(h, fixed, 8), BODT_OK);
+    for (int v = 0; v < 8; ++v) {
+        assert_int_equal(corners[v], v == 0 || v == 7);
+        assert_int_equal(fixed[v], v == 1 || v == 7);
+    }
+    bodt_mesh_destroy(h);
+
+    path = path_of("two_vertices.mesh");
+    write_text(path, MEDIT_HEAD "8\n" MEDIT_VERTS "Vertices\n8\n" MEDIT_VERTS MEDIT_TETS);
+    expect_read_failure(path, BODT_ERR_IO, path, 13, "a second Vertices section (the first at line 3)");
+}
+
 static void test_medit_malformed(void **state) {
     (void)state;
     const char *p;
@@ -1190,6 +1269,7 @@ int main(void) {
         cmocka_unit_test(test_read_message_bases),
         cmocka_unit_test(test_format_from_path),
         cmocka_unit_test(test_medit_ridges),
+        cmocka_unit_test(test_medit_repeated_sections),
         cmocka_unit_test(test_read_inverted_flag),
         cmocka_unit_test(test_medit_good_reference),
         cmocka_unit_test(test_medit_malformed),

@@ -10,6 +10,15 @@
 // lines as it keeps its ridges, and Gmsh and CGAL list their feature curves
 // there.  Other sections of the format are skipped by their known record
 // sizes; an unknown keyword is an error.  Indices in the file are 1-based.
+//
+// A section other than Vertices may come more than once: meshio writes one
+// section per cell block (a Tetrahedra section per region, a Triangles
+// section per marker).  Repeated sections are appended in file order, and
+// Ridges number the edges of all Edges sections in that order.  libMeshb
+// (Medit's own library) keeps one file position per keyword, so it reads
+// only the last section of each; appending reads meshio's files as meshio
+// meant them.  A second Vertices section is an error: the indices after it
+// would be ambiguous.
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
 #include "io/text_scanner.hpp"
@@ -85,8 +94,9 @@ MeshData read_medit(const std::string& path) {
     MeshData d;
     d.base = 1;
     int64_t nverts = -1;
+    int64_t vertices_line = 0;  // of the Vertices keyword, once seen
     bool saw_tets = false;
-    std::vector<std::pair<int64_t, int64_t>> ridges;  // 1-based index into the edges, line
+    std::vector<std::pair<int64_t, int64_t>> ridges;  // 1-based index into all edges, line
     std::string_view token;
     if (!in.next(token) || token != "MeshVersionFormatted")
         in.fail("not a Medit mesh: it must start with MeshVersionFormatted");
@@ -101,12 +111,17 @@ MeshData read_medit(const std::string& path) {
         }
         const Keyword* key = find_keyword(token);
         if (!key) in.fail("unknown keyword '" + std::string(token) + "'");
+        if (key->section == Section::Vertices) {
+            if (vertices_line > 0)
+                in.fail("a second Vertices section (the first at line " + std::to_string(vertices_line) +
+                        "): the vertex indices would be ambiguous");
+            vertices_line = in.line();
+        }
         const int64_t n = in.read_count(key->name, 2 * key->fields);
         const bool needs_vertices = key->section != Section::Vertices && key->section != Section::Skip;
         if (needs_vertices && nverts < 0) in.fail(std::string(key->name) + " comes before Vertices");
         switch (key->section) {
             case Section::Vertices:
-                if (nverts >= 0) in.fail("a second Vertices section");
                 if (n > INT32_MAX) in.fail("more than 2^31 - 1 vertices");
                 nverts = n;
                 d.xyz.resize(static_cast<size_t>(3 * n));
@@ -117,14 +132,11 @@ MeshData read_medit(const std::string& path) {
                 }
                 break;
             case Section::Tetrahedra:
-                if (saw_tets) in.fail("a second Tetrahedra section");
-                if (n > INT32_MAX) in.fail("more than 2^31 - 1 tets");
+                if (n > INT32_MAX - static_cast<int64_t>(d.regions.size())) in.fail("more than 2^31 - 1 tets");
                 saw_tets = true;
-                d.tets.resize(static_cast<size_t>(4 * n));
-                d.regions.resize(static_cast<size_t>(n));
                 for (int64_t t = 0; t < n; ++t) {
-                    for (int k = 0; k < 4; ++k) d.tets[4 * t + k] = read_vertex(in, nverts, "tet vertex");
-                    d.regions[t] = read_ref(in, "tet reference");
+                    for (int k = 0; k < 4; ++k) d.tets.push_back(read_vertex(in, nverts, "tet vertex"));
+                    d.regions.push_back(read_ref(in, "tet reference"));
                 }
                 break;
             case Section::Triangles:

@@ -26,10 +26,16 @@
 // edge already) but its indices must name edges.  A write lists every edge
 // in Ridges, for tools that take only ridges as feature lines.  Every other
 // keyword, known to libMeshb or not, is skipped by its next-keyword
-// position.  Nothing in the file is trusted: every position must move
-// forward and stay inside the file, every count must fit in the bytes before
-// the next keyword (checked before allocating), every index must name a
-// vertex or edge, every coordinate must be finite.  A problem is
+// position.  A data keyword other than Vertices may come more than once
+// (meshio writes one per cell block): repeated keywords are appended in file
+// order, and Ridges number the edges of all Edges keywords in that order.
+// libMeshb keeps one position per keyword code (ScaKwdHdr overwrites it), so
+// it reads only the last of each; appending reads meshio's files as meshio
+// meant them.  A second Vertices keyword is an error: the indices after it
+// would be ambiguous.  Nothing in the file is trusted: every position must
+// move forward and stay inside the file, every count must fit in the bytes
+// before the next keyword (checked before allocating), every index must name
+// a vertex or edge, every coordinate must be finite.  A problem is
 // Error(BODT_ERR_IO, "<path>: byte <offset>: ...").
 #include "io/medit_binary.hpp"
 
@@ -152,17 +158,21 @@ public:
     }
 
     // `n` bytes at `offset`, or an error naming `what` if the file is shorter.
-    void read(int64_t offset, int64_t n, unsigned char* out, const std::string& what) const {
+    void read(int64_t offset, int64_t n, unsigned char* out, const std::string& what) {
         if (offset < 0 || n < 0 || offset > size_ || n > size_ - offset)
             fail(offset, "the file is truncated: " + what + " needs " + std::to_string(n) +
                              " bytes here, the file has " + std::to_string(size_) + " bytes");
         if (n == 0) return;
-        if (fseeko(file_, static_cast<off_t>(offset), SEEK_SET) != 0 ||
+        // Seeks only when not there already: the sections are read in
+        // sequence, and each seek is a system call (a file of many small
+        // sections would spend most of its time in them).
+        if ((offset != at_ && fseeko(file_, static_cast<off_t>(offset), SEEK_SET) != 0) ||
             std::fread(out, 1, static_cast<size_t>(n), file_) != static_cast<size_t>(n))
-            fail(offset, "reading " + what + " failed");
+            fail(offset, "reading " + what + " failed");  // the reader ends here: at_ is not needed again
+        at_ = offset + n;
     }
 
-    std::vector<unsigned char> read(int64_t offset, int64_t n, const std::string& what) const {
+    std::vector<unsigned char> read(int64_t offset, int64_t n, const std::string& what) {
         // Checked before allocating: n never exceeds what the file holds.
         if (offset < 0 || n < 0 || offset > size_ || n > size_ - offset) read(offset, n, nullptr, what);
         std::vector<unsigned char> bytes(static_cast<size_t>(n));
@@ -174,6 +184,7 @@ private:
     std::string path_;
     FILE* file_;
     int64_t size_ = 0;
+    int64_t at_ = -1;  // the stream's position once a read has set it
 };
 
 // One keyword of the file.
@@ -201,14 +212,12 @@ public:
 
     MeshData read() {
         read_header();
-        scan_keywords();
         return read_sections();
     }
 
 private:
     InputFile in_;
     Layout lay_;
-    std::vector<Keyword> keywords_;
     int64_t end_at_ = 0;
 
     void read_header() {
@@ -234,17 +243,20 @@ private:
         lay_.pos_size = version >= 3 ? 8 : 4;
     }
 
-    // Walks the keyword chain from byte 8 to End.  Each position must lie
-    // past the keyword's header and inside the file, so the walk moves
-    // forward at every step and ends.
-    void scan_keywords() {
+    // Walks the keyword chain from byte 8 to End, calling visit(keyword) for
+    // each keyword before End.  Each position must lie past the keyword's
+    // header and inside the file, so the walk moves forward at every step
+    // and ends.  Nothing is kept per keyword: memory does not grow with
+    // their number.
+    template <class Visit>
+    void walk_keywords(Visit&& visit) {
         int64_t at = 8;
         for (;;) {
             if (at == in_.size()) in_.fail(at, "no End keyword: the file ends after the last keyword");
             unsigned char b[12];
             in_.read(at, 4, b, "a keyword code");
             const int32_t code = static_cast<int32_t>(load_int(b, 4, lay_.big_endian));
-            if (keywords_.empty() && code != kDimension)
+            if (at == 8 && code != kDimension)
                 in_.fail(at, "the first keyword is " + std::to_string(code) + ", not Dimension (3)");
             if (code == kEnd) {
                 // libMeshb writes a position 0 after End; nothing after End is read.
@@ -271,7 +283,7 @@ private:
                 if (dim != 3)
                     in_.fail(data, "only 3-D meshes are supported, the file has Dimension " + std::to_string(dim));
             }
-            keywords_.push_back({code, at, data, next});
+            visit(Keyword{code, at, data, next});
             at = next;
         }
     }
@@ -328,58 +340,39 @@ private:
         return ref_at_byte(r, rec, int64_t{field} * lay_.int_size, what);
     }
 
+    // Vertices first, found by a first walk: the other sections are checked
+    // against their count.  Then the others in file order, by a second walk.
     MeshData read_sections() {
         MeshData d;
         d.base = 1;
-        // Vertices first: the other sections are checked against their count.
-        const Keyword* vk = nullptr;
-        for (const Keyword& k : keywords_)
-            if (k.code == kVertices) {
-                if (vk) in_.fail(k.at, "a second Vertices section (the first at byte " + std::to_string(vk->at) + ")");
-                vk = &k;
-            }
-        if (!vk) in_.fail(end_at_, "no Vertices section before End");
-        const Records vr = records(*vk, 1, 3);
-        if (vr.count > INT32_MAX) in_.fail(vk->data, "more than 2^31 - 1 vertices");
-        const int64_t nverts = vr.count;
-        d.xyz.resize(static_cast<size_t>(3 * nverts));
-        d.vertex_refs.resize(static_cast<size_t>(nverts));
-        for (int64_t v = 0; v < nverts; ++v) {
-            for (int c = 0; c < 3; ++c) {
-                const double x = load_real(vr.record(v) + c * lay_.real_size, lay_.real_size, lay_.big_endian);
-                if (!std::isfinite(x))
-                    in_.fail(
-                        vr.offset(v, int64_t{c} * lay_.real_size),
-                        "coordinate " + std::to_string(c) + " of vertex " + std::to_string(v + 1) + " is not finite");
-                d.xyz[static_cast<size_t>(3 * v + c)] = x;
-            }
-            d.vertex_refs[static_cast<size_t>(v)] = ref_at_byte(vr, v, 3 * lay_.real_size, "vertex reference");
-        }
+        Keyword vk{};
+        walk_keywords([&](const Keyword& k) {
+            if (k.code != kVertices) return;
+            if (vk.code == kVertices)
+                in_.fail(k.at, "a second Vertices section (the first at byte " + std::to_string(vk.at) +
+                                   "): the vertex indices would be ambiguous");
+            vk = k;
+        });
+        if (vk.code != kVertices) in_.fail(end_at_, "no Vertices section before End");
+        const int64_t nverts = read_vertices(vk, d);
 
-        const Keyword* tk = nullptr;
-        std::vector<std::pair<int64_t, int64_t>> ridges;  // 1-based edge, offset
-        for (const Keyword& k : keywords_) {
+        bool saw_tets = false;
+        std::vector<std::pair<int64_t, int64_t>> ridges;  // 1-based index into all edges, offset
+        walk_keywords([&](const Keyword& k) {
             switch (k.code) {
                 case kTetrahedra: {
-                    if (tk)
-                        in_.fail(k.at,
-                                 "a second Tetrahedra section (the first at byte " + std::to_string(tk->at) + ")");
-                    tk = &k;
+                    saw_tets = true;
                     const Records r = records(k, 5, 0);
-                    if (r.count > INT32_MAX) in_.fail(k.data, "more than 2^31 - 1 tets");
-                    d.tets.resize(static_cast<size_t>(4 * r.count));
-                    d.regions.resize(static_cast<size_t>(r.count));
+                    if (r.count > INT32_MAX - static_cast<int64_t>(d.regions.size()))
+                        in_.fail(k.data, "more than 2^31 - 1 tets");
                     for (int64_t t = 0; t < r.count; ++t) {
-                        for (int c = 0; c < 4; ++c)
-                            d.tets[static_cast<size_t>(4 * t + c)] = vertex_at(r, t, c, nverts, "tet vertex");
-                        d.regions[static_cast<size_t>(t)] = ref_at(r, t, 4, "tet reference");
+                        for (int c = 0; c < 4; ++c) d.tets.push_back(vertex_at(r, t, c, nverts, "tet vertex"));
+                        d.regions.push_back(ref_at(r, t, 4, "tet reference"));
                     }
                     break;
                 }
                 case kTriangles: {
                     const Records r = records(k, 4, 0);
-                    d.triangles.reserve(d.triangles.size() + static_cast<size_t>(3 * r.count));
-                    d.tri_markers.reserve(d.tri_markers.size() + static_cast<size_t>(r.count));
                     for (int64_t f = 0; f < r.count; ++f) {
                         for (int c = 0; c < 3; ++c)
                             d.triangles.push_back(vertex_at(r, f, c, nverts, "triangle vertex"));
@@ -397,8 +390,6 @@ private:
                 }
                 case kEdges: {
                     const Records r = records(k, 3, 0);
-                    d.feature_edges.reserve(d.feature_edges.size() + static_cast<size_t>(2 * r.count));
-                    d.edge_refs.reserve(d.edge_refs.size() + static_cast<size_t>(r.count));
                     for (int64_t e = 0; e < r.count; ++e) {
                         d.feature_edges.push_back(vertex_at(r, e, 0, nverts, "edge vertex"));
                         d.feature_edges.push_back(vertex_at(r, e, 1, nverts, "edge vertex"));
@@ -412,10 +403,10 @@ private:
                     break;
                 }
                 default:
-                    break;  // Dimension (checked) and every other keyword: skipped
+                    break;  // Vertices (read), Dimension (checked) and every other keyword: skipped
             }
-        }
-        if (!tk) in_.fail(end_at_, "no Tetrahedra section before End");
+        });
+        if (!saw_tets) in_.fail(end_at_, "no Tetrahedra section before End");
         // Checked once every Edges section is read: Ridges may come first.
         const int64_t nedges = static_cast<int64_t>(d.edge_refs.size());
         for (const auto& [e, offset] : ridges)
@@ -423,6 +414,28 @@ private:
                 in_.fail(offset,
                          "ridge " + std::to_string(e) + " is not one of the " + std::to_string(nedges) + " edges");
         return d;
+    }
+
+    // The coordinates and refs of the Vertices keyword `vk` into `d`; their
+    // number.
+    int64_t read_vertices(const Keyword& vk, MeshData& d) {
+        const Records vr = records(vk, 1, 3);
+        if (vr.count > INT32_MAX) in_.fail(vk.data, "more than 2^31 - 1 vertices");
+        const int64_t nverts = vr.count;
+        d.xyz.resize(static_cast<size_t>(3 * nverts));
+        d.vertex_refs.resize(static_cast<size_t>(nverts));
+        for (int64_t v = 0; v < nverts; ++v) {
+            for (int c = 0; c < 3; ++c) {
+                const double x = load_real(vr.record(v) + c * lay_.real_size, lay_.real_size, lay_.big_endian);
+                if (!std::isfinite(x))
+                    in_.fail(
+                        vr.offset(v, int64_t{c} * lay_.real_size),
+                        "coordinate " + std::to_string(c) + " of vertex " + std::to_string(v + 1) + " is not finite");
+                d.xyz[static_cast<size_t>(3 * v + c)] = x;
+            }
+            d.vertex_refs[static_cast<size_t>(v)] = ref_at_byte(vr, v, 3 * lay_.real_size, "vertex reference");
+        }
+        return nverts;
     }
 };
 

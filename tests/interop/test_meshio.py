@@ -20,9 +20,17 @@ Uses the real meshio (Debian's python3-meshio, 5.0):
                    converted by `bodt convert` to .mesh, which must hold the
                    tets, regions, markers, edge refs and vertex refs;
                    lzma-compressed .vtu refused by name (exit 2)
+  meshio Medit -> ours   the sample in cell blocks (one per region, per
+                   marker, per edge ref, under medit:ref), written by
+                   meshio.write as .mesh and .meshb, a section per block:
+                   `bodt convert` reads every section (tets, regions,
+                   markers, edge refs, vertex refs) and `bodt improve` takes
+                   the file
   Gmsh -> meshio -> ours   tests/data/gmsh/box41.msh read by meshio and
-                   written as .vtu: `bodt convert` gives what it reads from
-                   the .msh itself (regions 1 and 2, marker 10, edge ref 20)
+                   written as .vtu, .mesh and .meshb (a Tetrahedra section
+                   per physical volume): `bodt convert` gives what it reads
+                   from the .msh itself (regions 1 and 2, marker 10, edge
+                   ref 20)
 """
 import argparse
 import functools
@@ -164,34 +172,81 @@ def meshio_read_by_ours(args):
     check(code == 2 and "vtkLZMADataCompressor is not supported" in err, "lzma: exit %d: %s" % (code, err))
 
 
+def in_blocks(cells, values):
+    """meshio's cell blocks of cells grouped by value, ascending, each in the given order: [(value, cells)]."""
+    return [(v, [c for c, w in zip(cells, values) if w == v]) for v in sorted(set(values))]
+
+
+def medit_blocks_read_by_ours(args):
+    points, tets, regions, triangles, markers, vertex_refs, edges, edge_refs = sample()
+    edges, edge_refs = edges + [(0, 9)], edge_refs + [13]  # (0, 9) along x on y = z = 0: another block
+    cells, refs = [], []
+    for cell_type, blocks in (("tetra", in_blocks(tets, regions)), ("triangle", in_blocks(triangles, markers)),
+                              ("line", in_blocks(edges, edge_refs))):
+        for value, block in blocks:
+            cells.append((cell_type, np.array(block)))
+            refs.append(np.full(len(block), value, dtype=np.int32))
+    mesh = meshio.Mesh(np.array(points), cells, cell_data={"medit:ref": refs},
+                       point_data={"medit:ref": np.array(vertex_refs, dtype=np.int32)})
+    # The sample in block order, as `bodt convert` must give it.
+    ordered = in_blocks(tets, regions)
+    expected = (points, [t for _, block in ordered for t in block], [v for v, block in ordered for _ in block],
+                triangles, markers, vertex_refs, edges, edge_refs)
+    for ext in ("mesh", "meshb"):
+        path = os.path.join(args.out, "meshio_sections." + ext)
+        meshio.write(path, mesh)
+        if ext == "mesh":
+            with open(path) as f:
+                text = f.read()
+            check([text.count("\n%s\n" % name) for name in ("Tetrahedra", "Triangles", "Edges")] == [2, 3, 2],
+                  "meshio_sections.mesh: not a section per block")
+        check_read_back(args, path, expected, True)
+        out = os.path.join(args.out, "meshio_sections_improved." + ext)
+        code, _, err = run(args.bodt, "improve", path, out, "--quiet")
+        if check(code == 0, "bodt improve %s: exit %d: %s" % (os.path.basename(path), code, err.strip())):
+            code, _, err = run(args.bodt, "convert", out, out + ".mesh", "--quiet")
+            m = read_medit(out + ".mesh")
+            check(code == 0 and set(m["regions"]) == {1, 2} and set(m["markers"]) - {0} == {1, 2, 3}
+                  and sorted(m["edge_refs"]) == [12, 13], "%s improved: regions, markers or edge refs" % ext)
+
+
 def gmsh_through_meshio(args):
     msh = os.path.join(args.data, "gmsh", "box41.msh")
     direct = os.path.join(args.out, "gmsh_direct.mesh")
     code, _, err = run(args.bodt, "convert", msh, direct, "--quiet")
     if not check(code == 0, "convert box41.msh: %s" % err):
         return
-    vtu = os.path.join(args.out, "gmsh_meshio.vtu")
     mesh = meshio.read(msh)
     # meshio 5.0 cannot turn Gmsh's cell sets into VTU cell data (an
     # IndexError in Mesh.cell_sets_to_data); the physical groups are in
     # gmsh:physical anyway.
     mesh.cell_sets = {}
-    meshio.write(vtu, mesh)
-    via = vtu + ".mesh"
-    code, _, err = run(args.bodt, "convert", vtu, via, "--quiet")
-    if not check(code == 0, "convert meshio's .vtu of box41.msh: %s" % err):
-        return
+    # Its Medit writer takes the first integer point data as the vertex
+    # refs, here gmsh:dim_tags (two a point), and fails on it.
+    del mesh.point_data["gmsh:dim_tags"]
+    for ext in ("vtu", "mesh", "meshb"):
+        written = os.path.join(args.out, "gmsh_meshio." + ext)
+        meshio.write(written, mesh)  # Medit: meshio warns that it skips the vertex cells and gmsh:geometrical
+        via = written + ".mesh"
+        code, _, err = run(args.bodt, "convert", written, via, "--quiet")
+        if check(code == 0, "convert meshio's .%s of box41.msh: %s" % (ext, err)):
+            compare_gmsh_via_meshio(direct, via, ext)
+
+
+def compare_gmsh_via_meshio(direct, via, ext):
+    """The .mesh of box41.msh read directly and through meshio's file of extension `ext`."""
     a, b = read_medit(direct), read_medit(via)
     check(sorted(a["regions"]) == [1] * 24 + [2] * 24, "box41.msh: regions %r" % sorted(set(a["regions"])))
     check(sorted(m for m in b["markers"] if m) == [10] * 8 and b["edge_refs"] == [20],
-          "via meshio: markers %r, edge refs %r" % (sorted(set(b["markers"])), b["edge_refs"]))
+          "via meshio's .%s: markers %r, edge refs %r" % (ext, sorted(set(b["markers"])), b["edge_refs"]))
 
     def by_position(m):
         """Tets (with region) and marked triangles by their vertices' coordinates."""
         key = lambda cell: tuple(sorted(m["points"][v] for v in cell))
         return ({key(t): r for t, r in zip(m["tets"], m["regions"])},
                 {key(t): r for t, r in zip(m["triangles"], m["markers"])})
-    check(by_position(a) == by_position(b), "box41.msh via meshio: tets, regions or markers differ from the .msh read directly")
+    check(by_position(a) == by_position(b),
+          "box41.msh via meshio's .%s: tets, regions or markers differ from the .msh read directly" % ext)
 
 
 def main():
@@ -203,6 +258,7 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     ours_read_by_meshio(args)
     meshio_read_by_ours(args)
+    medit_blocks_read_by_ours(args)
     gmsh_through_meshio(args)
     return checks.exit_status("ok (meshio %s)" % meshio.__version__)
 

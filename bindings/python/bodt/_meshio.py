@@ -60,10 +60,12 @@ caller's corners.
 What meshio 5.0 does with such a mesh: ``meshio.write("x.msh", m)``
 writes ANSYS, ``file_format="gmsh"`` (4.1) or ``"gmsh22"`` Gmsh; a 4.1
 file lists the points by entity, so meshio reads them back in another
-order (2.2 keeps it); a .mesh file gets one section per block, which
-meshio reads but libbodt and the Medit tools refuse (write .mesh files
-with ``Mesh.write``); .vtu files are compressed, which libbodt's reader
-refuses (``compression=None``) and keep no field data.
+order (2.2 keeps it); a .mesh or .meshb file gets one section per block,
+which meshio and libbodt read (libbodt appends repeated sections in file
+order), but libMeshb, Medit's own library, and MMG keep only the last
+section of each kind (write .mesh files for them with ``Mesh.write``);
+.vtu files are compressed, which libbodt's reader refuses
+(``compression=None``) and keep no field data.
 """
 
 from typing import Any

@@ -227,6 +227,61 @@ class TestFromMeshio(unittest.TestCase):
             bodt.from_meshio(big)
 
 
+class TestMeditFilesOfMeshio(unittest.TestCase):
+    """meshio writes a Medit section per cell block; bodt.Mesh.read appends repeated sections in file order."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(self.tmp.cleanup)
+
+    def path(self, name: str) -> str:
+        return os.path.join(self.tmp.name, name)
+
+    def test_two_blocks_of_tets_and_of_triangles(self):
+        """Two tetra and two triangle blocks with medit:ref, as .mesh and .meshb: regions and markers by block."""
+        points, tets = meshes.box(2)
+        with bodt.Mesh(points, tets) as mesh:
+            outer = mesh.boundary_faces().triangles
+        left = points[tets].mean(axis=1)[:, 0] < 0.5
+        height = points[outer].mean(axis=1)[:, 2]
+        bottom, top = outer[height < 1e-12], outer[height > 1 - 1e-12]
+        blocks = [("tetra", tets[left]), ("triangle", bottom), ("tetra", tets[~left]), ("triangle", top)]
+        refs = [np.full(len(tets[left]), 3), np.full(len(bottom), 10), np.full(len(tets[~left]), 4),
+                np.full(len(top), 20)]
+        written = meshio.Mesh(points, blocks, cell_data={"medit:ref": refs})
+        expected_markers = {**{tuple(sorted(t)): 10 for t in bottom}, **{tuple(sorted(t)): 20 for t in top}}
+        for name in ("blocks.mesh", "blocks.meshb"):
+            with self.subTest(name):
+                meshio.write(self.path(name), written)
+                if name.endswith(".mesh"):
+                    with open(self.path(name)) as f:
+                        text = f.read()
+                    self.assertEqual((text.count("\nTetrahedra\n"), text.count("\nTriangles\n")), (2, 2))
+                with bodt.Mesh.read(self.path(name)) as read:
+                    np.testing.assert_array_equal(read.points, points)
+                    np.testing.assert_array_equal(read.tets, np.concatenate([tets[left], tets[~left]]))
+                    np.testing.assert_array_equal(read.regions, [3] * int(left.sum()) + [4] * int((~left).sum()))
+                    faces = read.boundary_faces()
+                    markers = {tuple(sorted(t)): m for t, m in zip(faces.triangles.tolist(), faces.markers.tolist())}
+                    self.assertEqual({t: m for t, m in markers.items() if m}, expected_markers)
+
+    def test_to_meshio_round_trip(self):
+        """Mesh.to_meshio (a block per region, marker and edge ref), written by meshio as .mesh and .meshb, read
+        by bodt.Mesh.read: everything a Medit file holds (not the fixed vertices: meshio skips vertex cells)."""
+        with marked_box() as mesh:
+            expected = content(mesh)
+            converted = mesh.to_meshio()
+        self.assertGreater(sum(block.type == "tetra" for block in converted.cells), 1)
+        for name in ("box.mesh", "box.meshb"):
+            with self.subTest(name):
+                meshio.write(self.path(name), converted)  # meshio warns what it leaves out
+                with bodt.Mesh.read(self.path(name)) as read:
+                    got = content(read)
+                self.assertEqual(got["fixed"], [])
+                self.assertEqual({k: v for k, v in got.items() if k != "fixed"},
+                                 {k: v for k, v in expected.items() if k != "fixed"})
+
+
 class TestImport(unittest.TestCase):
     def test_meshio_only_when_asked_for(self):
         code = "import sys, bodt; print('meshio' in sys.modules)"
