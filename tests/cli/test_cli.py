@@ -15,14 +15,17 @@ plain Python (no library code).  Exits 0 on success, 1 on the
 first failed check.
 """
 import argparse
+import glob
 import json
 import math
 import os
 import struct
 import random
 import re
+import shutil
 import subprocess
 import sys
+import tempfile
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
@@ -1111,11 +1114,11 @@ def case_report(args):
 
 # ------------------------------------------- issue 39: output first, threads, JSON
 
-def run_timed(argv, timeout, preexec_fn=None):
+def run_timed(argv, timeout, preexec_fn=None, env=None):
     """(code, stdout, stderr), or None when argv did not end within timeout s."""
     try:
         p = subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True,
-                           timeout=timeout, preexec_fn=preexec_fn)
+                           timeout=timeout, preexec_fn=preexec_fn, env=env)
     except subprocess.TimeoutExpired:
         return None
     return p.returncode, p.stdout, p.stderr
@@ -1183,24 +1186,37 @@ def case_early_output(args):
             check(w in err, "%s: %r not in %r" % (what, w, err))
     check(not os.path.exists(good), "a refused command wrote %s" % good)
     check(not os.path.exists(missing_dir), "%s was created" % missing_dir)
-    # a directory the user may not write to (root may write anywhere: then the
-    # command runs as nobody), and an existing OUT that is read-only
-    ro = os.path.join(args.out, "early_read_only")
-    os.makedirs(ro, exist_ok=True)
-    os.chmod(ro, 0o555)
-    locked = os.path.join(args.out, "early_locked.mesh")
-    with open(locked, "w") as f:
-        f.write("locked\n")
-    os.chmod(locked, 0o444)
-    drop = as_nobody if os.geteuid() == 0 else None
-    for out_path, word in ((os.path.join(ro, "x.mesh"), "Permission denied"), (locked, "Permission denied")):
-        r = run_timed([args.bodt, "improve", fifo, out_path], 10, preexec_fn=drop)
-        if not check(r is not None, "improve to %s read the input" % out_path):
-            continue
-        check(r[0] == 4 and word in r[2], "improve to %s: exit %d %r" % (out_path, r[0], r[2]))
-    check(os.listdir(ro) == [] and open(locked).read() == "locked\n", "an unwritable output was written")
-    os.chmod(ro, 0o755)
-    os.chmod(locked, 0o644)
+    # a directory the user may not write to, and an existing OUT that is
+    # read-only: root may write anywhere, so as root the command runs as the
+    # user nobody, from a copy of it and of libbodt in a temporary directory
+    # that user may enter (the build tree may lie under /root, where it may not)
+    sandbox = tempfile.mkdtemp(prefix="bodt_early_")
+    try:
+        os.chmod(sandbox, 0o755)
+        bodt = os.path.join(sandbox, "bodt")
+        shutil.copy2(args.bodt, bodt)
+        for lib in glob.glob(os.path.join(os.path.dirname(args.bodt), "libbodt.so*")):
+            shutil.copy2(lib, sandbox, follow_symlinks=True)
+        env = dict(os.environ, LD_LIBRARY_PATH=sandbox)
+        in_fifo = make_fifo(os.path.join(sandbox, "never_written.mesh"))
+        os.chmod(in_fifo, 0o644)
+        ro = os.path.join(sandbox, "read_only")
+        os.mkdir(ro, 0o555)
+        os.chmod(ro, 0o555)
+        locked = os.path.join(sandbox, "locked.mesh")
+        with open(locked, "w") as f:
+            f.write("locked\n")
+        os.chmod(locked, 0o444)
+        drop = as_nobody if os.geteuid() == 0 else None
+        for out_path in (os.path.join(ro, "x.mesh"), locked):
+            r = run_timed([bodt, "improve", in_fifo, out_path], 10, preexec_fn=drop, env=env)
+            if not check(r is not None, "improve to %s read the input" % out_path):
+                continue
+            check(r[0] == 4 and "Permission denied" in r[2], "improve to %s: exit %d %r" % (out_path, r[0], r[2]))
+        check(os.listdir(ro) == [] and open(locked).read() == "locked\n", "an unwritable output was written")
+        os.chmod(ro, 0o755)
+    finally:
+        shutil.rmtree(sandbox, ignore_errors=True)  # as root, or after the checks made ro writable again
     # the usual case is not refused: a good OUT, and IN fed to the FIFO
     src = os.path.join(args.data, "box2.mesh")
     p = subprocess.Popen([args.bodt, "improve", fifo, good, "-q"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
