@@ -315,13 +315,15 @@ bodt_mesh* from_mesh_data(bodt::MeshData&& d, uint32_t flags) {
         return h.release();
     } catch (const Error& e) {
         if (e.status() != BODT_ERR_INVALID_ARGUMENT && e.status() != BODT_ERR_BAD_MESH) throw;
+        // "(numbered from H)", which some messages carry already, with the
+        // file's base when it differs.
         std::string message = e.what();
-        std::vector<std::string> notes;
-        if (message.find("(numbered from") == std::string::npos)
-            notes.push_back("numbered from " + std::to_string(handle_base));
-        if (file_base != handle_base) notes.push_back("the file numbers from " + std::to_string(file_base));
-        for (size_t k = 0; k < notes.size(); ++k) message += (k ? "; " : " (") + notes[k];
-        if (!notes.empty()) message += ")";
+        const std::string said = "(numbered from " + std::to_string(handle_base) + ")";
+        std::string note = said;
+        if (file_base != handle_base) note.insert(note.size() - 1, "; the file numbers from " + std::to_string(file_base));
+        const size_t at = message.find(said);
+        if (at != std::string::npos) message.replace(at, said.size(), note);
+        else message += " " + note;
         throw Error(BODT_ERR_BAD_MESH, message);
     }
 }

@@ -1,7 +1,6 @@
 #include "common/parallel.hpp"
 
 #include <cstdlib>
-#include <string>
 #include <thread>
 
 namespace bodt {
