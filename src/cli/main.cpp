@@ -5,7 +5,6 @@
 #include "cli/args.hpp"
 #include "cli/compare.hpp"
 #include "cli/help.hpp"
-#include "cli/json_value.hpp"
 #include "cli/mesh_snapshot.hpp"
 #include "cli/output_check.hpp"
 #include "cli/progress.hpp"
@@ -14,12 +13,9 @@
 #include "cli/run_record.hpp"
 #include "cli/surface_input.hpp"
 
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -449,20 +445,6 @@ int cmd_convert(const std::vector<std::string>& args) {
     return kOk;
 }
 
-// The record of a run from the JSON that `bodt improve --json` printed.
-bool read_run(const std::string& path, RunRecord& run) {
-    std::ifstream file(path, std::ios::binary);
-    std::ostringstream text;
-    text << file.rdbuf();
-    std::string error;
-    JsonValue root;
-    if (!file) error = std::strerror(errno);
-    else if (parse_json(text.str(), root, error)) run_from_json(root, run, error);
-    if (error.empty()) return true;
-    std::fprintf(stderr, "bodt report: --run %s: %s\n", path.c_str(), error.c_str());
-    return false;
-}
-
 int cmd_report(const std::vector<std::string>& args) {
     ParsedArgs parsed;
     Verbosity verbosity;
@@ -475,7 +457,10 @@ int cmd_report(const std::vector<std::string>& args) {
     if (!writable(*out, false, error)) return output_error("report", error);
     RunRecord run;
     const std::string* run_path = parsed.last("--run");
-    if (run_path && !read_run(*run_path, run)) return kInput;
+    if (run_path && !read_run(*run_path, run, error)) {
+        std::fprintf(stderr, "bodt report: --run %s: %s\n", run_path->c_str(), error.c_str());
+        return kInput;
+    }
     Mesh original, improved;
     if (const int code = load_pair("report", parsed, original, improved); code >= 0) return code;
     MeshSnapshot a, b;

@@ -13,11 +13,11 @@ namespace bodt_cli {
 
 struct MeshSnapshot {
     int32_t nverts = 0, ntets = 0, nfaces = 0;
-    int base = 0;  // the handle's index base (0 for meshes the command reads)
+    int base = 0;  // the handle's index base: the file's (Medit 1, VTK 0) for meshes the command reads
     bodt_quality quality{};
     std::vector<double> xyz;                       // 3 per vertex
     std::vector<int32_t> tets;                     // 4 per tet, in `base`
-    std::vector<int32_t> faces, markers;           // 3 and 1 per boundary face
+    std::vector<int32_t> faces, markers;           // 3 (in `base`) and 1 per boundary face
     std::vector<double> min_dihedral, max_dihedral, stretch, volume;  // per tet
 };
 

@@ -114,23 +114,24 @@ void Progress::step(const bodt_step_report& r) {
 
 void Progress::tick() {
     std::unique_lock<std::mutex> lock(mutex_);
-    while (!stop_) {
-        wake_.wait_for(lock, std::chrono::milliseconds(200));
-        if (stop_) break;
-        const double t = elapsed();
-        if (style_ == Style::Live) {
-            draw_live(t);
-        } else if (!long_ && t >= kLongRun) {
-            // The run turned long: say what it is doing now, then go on logging.
-            long_ = true;
-            last_log_ = t;
-            if (phase_ == Phase::Steps && !steps_.empty()) {
-                log(step_line(t));
-                logged_steps_ = steps_.size();
-            } else {
-                log(label_ + " [" + duration_text(t) + "]");
-            }
-        }
+    const auto stopped = [this] { return stop_; };
+    if (style_ == Style::Live) {
+        // The clock on the live line runs while the library works.
+        while (!wake_.wait_for(lock, std::chrono::milliseconds(200), stopped)) draw_live(elapsed());
+        return;
+    }
+    // LongLog: one thing to do, at kLongRun if the run is still going: say
+    // what it is doing now; phase() and step() log from then on.
+    const auto at = start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kLongRun));
+    if (wake_.wait_until(lock, at, stopped)) return;
+    const double t = elapsed();
+    long_ = true;
+    last_log_ = t;
+    if (phase_ == Phase::Steps && !steps_.empty()) {
+        log(step_line(t));
+        logged_steps_ = steps_.size();
+    } else {
+        log(label_ + " [" + duration_text(t) + "]");
     }
 }
 

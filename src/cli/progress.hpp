@@ -5,9 +5,10 @@
 //   normal:   on a terminal (isatty(2)), one live line redrawn in place
 //             (a ticker thread updates its clock while the library works);
 //             otherwise (a log, a pipe) nothing for a run that ends within
-//             kLongRun seconds, and from then on a log line for each phase
-//             and at most one step line every kLogInterval seconds (plus the
-//             last step);
+//             kLongRun seconds, and from then on (the ticker wakes once, at
+//             kLongRun, to say what the run is doing) a log line for each
+//             phase and at most one step line every kLogInterval seconds
+//             (plus the last step);
 //   verbose:  a log line for each phase and each step, terminal or not.
 // Log lines end with the time elapsed in brackets: "reading a.mesh [0.0 s]",
 // "step 3/20: min dihedral ..., 0 collapsed [3.5 s; step 1.1 s; about 18 s
@@ -84,7 +85,7 @@ private:
     Clock::time_point start_;
     mutable std::mutex mutex_;
     std::condition_variable wake_;
-    std::thread ticker_;
+    std::thread ticker_;          // Live and LongLog; finish() joins it
     bool stop_ = false;
     bool long_ = false;           // LongLog: the run passed kLongRun
     bool line_open_ = false;      // Live: a line is drawn and not ended

@@ -57,19 +57,10 @@ const char* const kColorInverted = "#c62828";
 
 // ------------------------------------------------------------- mesh data
 
-// A mesh's snapshot under the names the report uses, and what the report
-// derives from it.
+// What the report derives from a mesh's snapshot.
 struct MeshData {
-    explicit MeshData(const MeshSnapshot& snap)
-        : nverts(snap.nverts), ntets(snap.ntets), nfaces(snap.nfaces), base(snap.base), q(snap.quality),
-          xyz(snap.xyz), tets(snap.tets), min_d(snap.min_dihedral), max_d(snap.max_dihedral),
-          stretch(snap.stretch), volume(snap.volume) {}
-    const int32_t nverts, ntets, nfaces;
-    const int base;
-    const bodt_quality& q;
-    const std::vector<double>& xyz;
-    const std::vector<int32_t>& tets;
-    const std::vector<double>&min_d, &max_d, &stretch, &volume;
+    explicit MeshData(const MeshSnapshot& snapshot) : m(snapshot) {}
+    const MeshSnapshot& m;
     std::vector<int64_t> angle_counts;    // kAngleBins
     std::vector<int64_t> stretch_counts;  // kStretchBins
     int64_t inverted = 0;                 // tets with 0 and 180 degrees
@@ -80,19 +71,20 @@ struct MeshData {
 
 // The histograms, counts and worst tets of `d`.
 bool derive(MeshData& d, std::string& error) {
-    const size_t nt = static_cast<size_t>(d.ntets);
+    const MeshSnapshot& m = d.m;
+    const size_t nt = static_cast<size_t>(m.ntets);
     d.angle_counts.assign(kAngleBins, 0);
     d.stretch_counts.assign(kStretchBins, 0);
     // Checked once here; the loops below read the corners freely.
     for (size_t k = 0; k < 4 * nt; ++k)
-        if (d.tets[k] - d.base < 0 || d.tets[k] - d.base >= d.nverts) {
-            error = "tet " + std::to_string(k / 4 + static_cast<size_t>(d.base)) + " has a vertex index out of range";
+        if (m.tets[k] - m.base < 0 || m.tets[k] - m.base >= m.nverts) {
+            error = "tet " + std::to_string(k / 4 + static_cast<size_t>(m.base)) + " has a vertex index out of range";
             return false;
         }
     const auto corners = [&](size_t t) {
         bodt::TetPoints p;
         for (size_t k = 0; k < 4; ++k) {
-            const double* x = &d.xyz[3 * static_cast<size_t>(d.tets[4 * t + k] - d.base)];
+            const double* x = &m.xyz[3 * static_cast<size_t>(m.tets[4 * t + k] - m.base)];
             p[k] = bodt::Vec3(x[0], x[1], x[2]);
         }
         return p;
@@ -112,7 +104,7 @@ bool derive(MeshData& d, std::string& error) {
         bodt::TetPoints p = corners(t);
         if (flipped) std::swap(p[2], p[3]);
         auto angles = bodt::dihedral_angles(p);
-        const bool inverted = d.min_d[t] <= 0.0 && d.max_d[t] >= 180.0;
+        const bool inverted = m.min_dihedral[t] <= 0.0 && m.max_dihedral[t] >= 180.0;
         if (inverted) {  // as bodt_mesh_quality: one 0 and one 180 degree angle
             ++d.inverted;
             angles[0] = 0.0;
@@ -124,20 +116,20 @@ bool derive(MeshData& d, std::string& error) {
             ++d.angle_counts[static_cast<size_t>(bin)];
         }
         if (!inverted) {
-            int bin = static_cast<int>(std::floor(d.stretch[t] * kStretchBins));
+            int bin = static_cast<int>(std::floor(m.stretch[t] * kStretchBins));
             bin = std::clamp(bin, 0, kStretchBins - 1);
             ++d.stretch_counts[static_cast<size_t>(bin)];
         }
-        if (d.min_d[t] < kSmallAngle) ++d.small_angle;
-        if (d.max_d[t] > kLargeAngle) ++d.large_angle;
-        if (d.min_d[t] < kSmallAngle || d.max_d[t] > kLargeAngle) ++d.bad_angle;
+        if (m.min_dihedral[t] < kSmallAngle) ++d.small_angle;
+        if (m.max_dihedral[t] > kLargeAngle) ++d.large_angle;
+        if (m.min_dihedral[t] < kSmallAngle || m.max_dihedral[t] > kLargeAngle) ++d.bad_angle;
     }
     d.worst.resize(nt);
     for (size_t i = 0; i < nt; ++i) d.worst[i] = i;
     const size_t k = std::min<size_t>(kWorstCount, nt);
     std::partial_sort(d.worst.begin(), d.worst.begin() + static_cast<std::ptrdiff_t>(k), d.worst.end(),
                       [&](size_t x, size_t y) {
-                          if (d.stretch[x] != d.stretch[y]) return d.stretch[x] < d.stretch[y];
+                          if (m.stretch[x] != m.stretch[y]) return m.stretch[x] < m.stretch[y];
                           return x < y;
                       });
     d.worst.resize(k);
@@ -309,6 +301,7 @@ void shared_scale(Chart& a, Chart& b) {
 
 
 Chart dihedral_chart(const MeshData& d, const std::string& which, const char* color) {
+    const bodt_quality& q = d.m.quality;
     Chart c;
     c.id = "dihedral-" + which;
     c.measure = "dihedral";
@@ -331,12 +324,13 @@ Chart dihedral_chart(const MeshData& d, const std::string& which, const char* co
     }
     c.data_counts = d.angle_counts;
     c.color = color;
-    c.markers = {{d.q.min_dihedral, "min " + fixed(d.q.min_dihedral, 1) + kDeg, false},
-                 {d.q.max_dihedral, "max " + fixed(d.q.max_dihedral, 1) + kDeg, true}};
+    c.markers = {{q.min_dihedral, "min " + fixed(q.min_dihedral, 1) + kDeg, false},
+                 {q.max_dihedral, "max " + fixed(q.max_dihedral, 1) + kDeg, true}};
     return c;
 }
 
 Chart stretch_chart(const MeshData& d, const std::string& which, const char* color) {
+    const bodt_quality& q = d.m.quality;
     Chart c;
     c.id = "stretch-" + which;
     c.measure = "stretch";
@@ -361,8 +355,8 @@ Chart stretch_chart(const MeshData& d, const std::string& which, const char* col
     c.has_inverted_bar = true;
     c.inverted = d.inverted;
     c.color = color;
-    const double ms = std::max(0.0, d.q.min_stretch);
-    c.markers = {{ms, "min " + with_minus(fixed(d.q.min_stretch, 3)), ms > 0.6}};
+    const double ms = std::max(0.0, q.min_stretch);
+    c.markers = {{ms, "min " + with_minus(fixed(q.min_stretch, 3)), ms > 0.6}};
     return c;
 }
 
@@ -414,23 +408,24 @@ std::string quality_row(const Row& r) {
 
 std::string quality_table(const MeshData& a, const MeshData& b) {
     const std::string deg = kDeg;
+    const bodt_quality &qa = a.m.quality, &qb = b.m.quality;
     const std::vector<Row> rows = {
-        {"vertices", "Vertices", double(a.q.num_vertices), double(b.q.num_vertices), -1, 0, ""},
-        {"tets", "Tets", double(a.q.num_tets), double(b.q.num_tets), -1, 0, ""},
-        {"boundary_faces", "Boundary faces", double(a.q.num_boundary_faces),
-         double(b.q.num_boundary_faces), -1, 0, ""},
-        {"min_dihedral", "Smallest dihedral angle", a.q.min_dihedral, b.q.min_dihedral, 2, 1, deg},
-        {"max_dihedral", "Largest dihedral angle", a.q.max_dihedral, b.q.max_dihedral, 2, -1, deg},
-        {"mean_dihedral", "Mean dihedral angle", a.q.mean_dihedral, b.q.mean_dihedral, 2, 0, deg},
-        {"min_stretch", "Smallest stretch", a.q.min_stretch, b.q.min_stretch, 4, 1, ""},
-        {"mean_stretch", "Mean stretch", a.q.mean_stretch, b.q.mean_stretch, 4, 1, ""},
-        {"num_inverted", "Inverted tets", double(a.q.num_inverted), double(b.q.num_inverted), -1,
+        {"vertices", "Vertices", double(qa.num_vertices), double(qb.num_vertices), -1, 0, ""},
+        {"tets", "Tets", double(qa.num_tets), double(qb.num_tets), -1, 0, ""},
+        {"boundary_faces", "Boundary faces", double(qa.num_boundary_faces),
+         double(qb.num_boundary_faces), -1, 0, ""},
+        {"min_dihedral", "Smallest dihedral angle", qa.min_dihedral, qb.min_dihedral, 2, 1, deg},
+        {"max_dihedral", "Largest dihedral angle", qa.max_dihedral, qb.max_dihedral, 2, -1, deg},
+        {"mean_dihedral", "Mean dihedral angle", qa.mean_dihedral, qb.mean_dihedral, 2, 0, deg},
+        {"min_stretch", "Smallest stretch", qa.min_stretch, qb.min_stretch, 4, 1, ""},
+        {"mean_stretch", "Mean stretch", qa.mean_stretch, qb.mean_stretch, 4, 1, ""},
+        {"num_inverted", "Inverted tets", double(qa.num_inverted), double(qb.num_inverted), -1,
          -1, ""},
         {"below_10", "Tets with an angle below 10" + deg, double(a.small_angle),
          double(b.small_angle), -1, -1, ""},
         {"above_165", "Tets with an angle above 165" + deg, double(a.large_angle),
          double(b.large_angle), -1, -1, ""},
-        {"volume", "Volume", a.q.volume, b.q.volume, 106, 0, ""},
+        {"volume", "Volume", qa.volume, qb.volume, 106, 0, ""},
     };
     std::string s =
         "<div class=\"scroll\"><table class=\"quality\" id=\"quality-table\">\n"
@@ -443,10 +438,11 @@ std::string quality_table(const MeshData& a, const MeshData& b) {
 }
 
 std::string worst_table(const MeshData& d, const std::string& which) {
+    const MeshSnapshot& m = d.m;
     const std::vector<size_t>& order = d.worst;
     const size_t k = order.size();
     std::string s = "<div class=\"scroll\"><table class=\"worst\" id=\"worst-" + which +
-                    "\" data-base=\"" + std::to_string(d.base) + "\">\n<thead><tr>"
+                    "\" data-base=\"" + std::to_string(m.base) + "\">\n<thead><tr>"
                     "<th scope=\"col\">#</th><th scope=\"col\">Tet</th>"
                     "<th scope=\"col\">Min angle</th><th scope=\"col\">Max angle</th>"
                     "<th scope=\"col\">Stretch</th><th scope=\"col\">Volume</th>"
@@ -456,25 +452,25 @@ std::string worst_table(const MeshData& d, const std::string& which) {
         const size_t t = order[r];
         double c[3] = {0, 0, 0};
         for (size_t j = 0; j < 4; ++j) {
-            const size_t v = static_cast<size_t>(d.tets[4 * t + j] - d.base);
-            for (size_t x = 0; x < 3; ++x) c[x] += 0.25 * d.xyz[3 * v + x];
+            const size_t v = static_cast<size_t>(m.tets[4 * t + j] - m.base);
+            for (size_t x = 0; x < 3; ++x) c[x] += 0.25 * m.xyz[3 * v + x];
         }
-        const bool inv = d.min_d[t] <= 0.0 && d.max_d[t] >= 180.0;
-        s += "<tr data-tet=\"" + std::to_string(t + static_cast<size_t>(d.base)) + "\"" +
+        const bool inv = m.min_dihedral[t] <= 0.0 && m.max_dihedral[t] >= 180.0;
+        s += "<tr data-tet=\"" + std::to_string(t + static_cast<size_t>(m.base)) + "\"" +
              (inv ? " class=\"inverted\"" : "") + ">";
         s += "<td class=\"rank\">" + std::string(r < kMarkedCount ? "<span class=\"markdot\"></span>" : "") +
              std::to_string(r + 1) + "</td>";
-        s += "<td class=\"idx\">" + std::to_string(t + static_cast<size_t>(d.base)) + "</td>";
-        s += std::string("<td data-value=\"") + exact(d.min_d[t]) + "\"" +
-             (d.min_d[t] < kSmallAngle ? " class=\"bad\"" : "") + ">" + fixed(d.min_d[t], 2) +
+        s += "<td class=\"idx\">" + std::to_string(t + static_cast<size_t>(m.base)) + "</td>";
+        s += std::string("<td data-value=\"") + exact(m.min_dihedral[t]) + "\"" +
+             (m.min_dihedral[t] < kSmallAngle ? " class=\"bad\"" : "") + ">" + fixed(m.min_dihedral[t], 2) +
              kDeg + "</td>";
-        s += std::string("<td data-value=\"") + exact(d.max_d[t]) + "\"" +
-             (d.max_d[t] > kLargeAngle ? " class=\"bad\"" : "") + ">" + fixed(d.max_d[t], 2) +
+        s += std::string("<td data-value=\"") + exact(m.max_dihedral[t]) + "\"" +
+             (m.max_dihedral[t] > kLargeAngle ? " class=\"bad\"" : "") + ">" + fixed(m.max_dihedral[t], 2) +
              kDeg + "</td>";
-        s += "<td data-value=\"" + exact(d.stretch[t]) + "\"" +
-             (d.stretch[t] <= 0.0 ? " class=\"bad\"" : "") + ">" +
-             with_minus(fixed(d.stretch[t], 4)) + "</td>";
-        s += "<td data-value=\"" + exact(d.volume[t]) + "\">" + general(d.volume[t], 4) + "</td>";
+        s += "<td data-value=\"" + exact(m.stretch[t]) + "\"" +
+             (m.stretch[t] <= 0.0 ? " class=\"bad\"" : "") + ">" +
+             with_minus(fixed(m.stretch[t], 4)) + "</td>";
+        s += "<td data-value=\"" + exact(m.volume[t]) + "\">" + general(m.volume[t], 4) + "</td>";
         s += "<td class=\"centroid\" data-value=\"" + exact(c[0]) + " " + exact(c[1]) + " " +
              exact(c[2]) + "\">" + general(c[0], 5) + ", " + general(c[1], 5) + ", " +
              general(c[2], 5) + "</td></tr>\n";
@@ -594,8 +590,8 @@ footer { margin: 36px 0 28px; padding-top: 12px; border-top: 1px solid var(--lin
 )CSS";
 
 std::string mesh_counts(const MeshData& d) {
-    return grouped(d.nverts) + " vertices &middot; " + grouped(d.ntets) + " tets &middot; " +
-           grouped(d.nfaces) + " boundary faces";
+    return grouped(d.m.nverts) + " vertices &middot; " + grouped(d.m.ntets) + " tets &middot; " +
+           grouped(d.m.nfaces) + " boundary faces";
 }
 
 std::string card(const std::string& key, const std::string& before, const std::string& after) {
@@ -639,12 +635,12 @@ bool render_report(const MeshSnapshot& original, const MeshSnapshot& improved, c
 
     // Key figures.
     s += "<section id=\"summary\">\n<div class=\"cards\">\n";
-    s += card("Smallest dihedral angle", fixed(a.q.min_dihedral, 2) + deg,
-              fixed(b.q.min_dihedral, 2) + deg);
-    s += card("Largest dihedral angle", fixed(a.q.max_dihedral, 2) + deg,
-              fixed(b.q.max_dihedral, 2) + deg);
-    s += card("Smallest stretch", with_minus(fixed(a.q.min_stretch, 3)),
-              with_minus(fixed(b.q.min_stretch, 3)));
+    s += card("Smallest dihedral angle", fixed(original.quality.min_dihedral, 2) + deg,
+              fixed(improved.quality.min_dihedral, 2) + deg);
+    s += card("Largest dihedral angle", fixed(original.quality.max_dihedral, 2) + deg,
+              fixed(improved.quality.max_dihedral, 2) + deg);
+    s += card("Smallest stretch", with_minus(fixed(original.quality.min_stretch, 3)),
+              with_minus(fixed(improved.quality.min_stretch, 3)));
     s += card("Tets with an angle &lt; 10" + deg + " or &gt; 165" + deg, grouped(a.bad_angle),
               grouped(b.bad_angle));
     s += "</div>\n</section>\n";
@@ -716,8 +712,8 @@ bool render_report(const MeshSnapshot& original, const MeshSnapshot& improved, c
     s += "<section id=\"worst\">\n<h2>Worst tets</h2>\n<p class=\"note\">The " +
          std::to_string(kWorstCount) + " tets with the lowest stretch, worst first; the first " +
          std::to_string(kMarkedCount) + " (<span class=\"markdot\"></span>) are marked in the views above.  Tets "
-         "and vertices are numbered as in each file: the improved mesh's from " + std::to_string(b.base) +
-         ", the original's from " + std::to_string(a.base) + "; angles below 10" + deg + " or above 165" + deg +
+         "and vertices are numbered as in each file: the improved mesh's from " + std::to_string(improved.base) +
+         ", the original's from " + std::to_string(original.base) + "; angles below 10" + deg + " or above 165" + deg +
          " in red.</p>\n";
     s += "<h3><span class=\"dot after\"></span>Improved mesh</h3>\n" + worst_table(b, "improved");
     s += "<h3><span class=\"dot before\"></span>Original mesh</h3>\n" + worst_table(a, "original");

@@ -1,9 +1,14 @@
 #include "cli/run_record.hpp"
 
+#include "cli/json_value.hpp"
 #include "cli/quality_output.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <limits>
+#include <sstream>
 
 namespace bodt_cli {
 
@@ -117,6 +122,10 @@ std::string run_json(const RunRecord& run) {
     return s + "]}";
 }
 
+namespace {
+
+// The record from the JSON of run_json; false (with `error`) when `root` is
+// not such an object.
 bool run_from_json(const JsonValue& root, RunRecord& run, std::string& error) {
     const JsonValue* per_step = root.get("per_step");
     if (root.type != JsonValue::Type::Object || !root.get("mode") || !root.get("mode")->is_string() || !per_step ||
@@ -174,6 +183,20 @@ bool run_from_json(const JsonValue& root, RunRecord& run, std::string& error) {
     run.recovery_before = recovery_of(root.get("recovery_before"));
     run.recovery_after = recovery_of(root.get("recovery_after"));
     return true;
+}
+
+}  // namespace
+
+bool read_run(const std::string& path, RunRecord& run, std::string& error) {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) {
+        error = std::strerror(errno);
+        return false;
+    }
+    std::ostringstream text;
+    text << file.rdbuf();
+    JsonValue root;
+    return parse_json(text.str(), root, error) && run_from_json(root, run, error);
 }
 
 }  // namespace bodt_cli

@@ -6,7 +6,6 @@
 #pragma once
 
 #include "bodt.h"
-#include "cli/json_value.hpp"
 #include "cli/progress.hpp"
 
 #include <cstdint>
@@ -42,8 +41,10 @@ struct RunRecord {
 // One line of JSON, no newline.
 std::string run_json(const RunRecord& run);
 
-// The record from the JSON of run_json; false (with `error`) when `root` is
-// not such an object.
-bool run_from_json(const JsonValue& root, RunRecord& run, std::string& error);
+// The record in the file `path`, the JSON of run_json (as `bodt improve
+// --json` printed it, or as any JSON tool rewrote it).  False with `error`
+// when the file cannot be read, is not JSON ("line 3, column 7: expected
+// ':'") or is not such an object.
+bool read_run(const std::string& path, RunRecord& run, std::string& error);
 
 }  // namespace bodt_cli

@@ -6,24 +6,19 @@
 //       reads ORIGINAL, improves a copy with N steps of B-ODT (bodt_run),
 //       writes that copy to IMPROVED, then writes the report;
 //   report_driver --accept-inverted ORIGINAL IMPROVED REPORT.html
-//       reads both meshes with BODT_CREATE_ACCEPT_INVERTED;
-//   report_driver --run RUN.json ORIGINAL IMPROVED REPORT.html
-//       adds the run of `bodt improve --json` (RUN.json) to the report.
+//       reads both meshes with BODT_CREATE_ACCEPT_INVERTED.
+// (A report with a run is `bodt report --run` or `bodt improve --report`.)
 //
 // Prints on stdout one JSON object with what the library says about both
 // meshes (bodt_mesh_quality, the per-tet measures, vertices and tets), for
 // the test to compare with the page.  Exit status 0 on success, 1 on a usage
 // error, 2 on a failed library call or report.
 #include "bodt.h"
-#include "cli/json_value.hpp"
 #include "cli/mesh_snapshot.hpp"
 #include "cli/report.hpp"
-#include "cli/run_record.hpp"
 
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -92,8 +87,7 @@ bool print_mesh(const char* key, const bodt_mesh* m) {
 
 int usage() {
     std::fprintf(stderr,
-                 "usage: report_driver [--improve N | --accept-inverted | --run RUN.json] ORIGINAL "
-                 "IMPROVED REPORT.html\n");
+                 "usage: report_driver [--improve N | --accept-inverted] ORIGINAL IMPROVED REPORT.html\n");
     return 1;
 }
 
@@ -103,21 +97,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
     int improve = -1;
     uint32_t flags = BODT_CREATE_DEFAULT;
-    bodt_cli::RunRecord run;
-    bool with_run = false;
-    if (args.size() > 1 && args[0] == "--run") {
-        std::ifstream file(args[1]);
-        std::ostringstream text;
-        text << file.rdbuf();
-        bodt_cli::JsonValue root;
-        std::string error;
-        if (!file || !bodt_cli::parse_json(text.str(), root, error) || !bodt_cli::run_from_json(root, run, error)) {
-            std::fprintf(stderr, "report_driver: %s: %s\n", args[1].c_str(), error.c_str());
-            return 1;
-        }
-        with_run = true;
-        args.erase(args.begin(), args.begin() + 2);
-    } else if (!args.empty() && args[0] == "--accept-inverted") {
+    if (!args.empty() && args[0] == "--accept-inverted") {
         flags = BODT_CREATE_ACCEPT_INVERTED;
         args.erase(args.begin());
     } else if (!args.empty() && args[0] == "--improve") {
@@ -150,8 +130,7 @@ int main(int argc, char** argv) {
         std::string error;
         bodt_cli::MeshSnapshot a, b;
         if (!bodt_cli::take_snapshot(original, a, error) || !bodt_cli::take_snapshot(improved, b, error) ||
-            !bodt_cli::write_report(a, b, original_path, improved_path, with_run ? &run : nullptr, report_path,
-                                    error)) {
+            !bodt_cli::write_report(a, b, original_path, improved_path, nullptr, report_path, error)) {
             std::fprintf(stderr, "report_driver: %s\n", error.c_str());
             goto done;
         }

@@ -11,8 +11,8 @@ pseudo-terminal and a named pipe for a slow read), histogram, help, report,
 early_output (named pipes as inputs that must not be read), threads,
 improve_json, inverted_message, file_numbering.  Every value checked comes from running the
 command; expected mesh quality is recomputed here from the mesh file with
-plain Python (no library code).  Exits 0 on success, 1 on the
-first failed check.
+plain Python (no library code).  Every check runs, a failed one is
+printed; exits 0 when all passed, else 1.
 """
 import argparse
 import glob
@@ -454,6 +454,40 @@ def case_improve_opt_weighted(args):
     check(code == 0 and "opt-weighted: paper 001" in out, "help improve does not document opt-weighted")
 
 
+def recovery_rows(html):
+    """{key: (before, after)} of the report's table of recovery errors."""
+    return {k: (float(b), float(a)) for k, b, a in
+            re.findall(r'<tr data-key="(\w+)"><th scope="row">[^<]*</th><td data-value="([^"]+)">[^<]*</td>'
+                       r'<td data-value="([^"]+)">', html.split('id="run-recovery"', 1)[-1].split("</table>")[0])}
+
+
+def check_recovery_record(args, deformed, reference):
+    """The density and geometric errors of a phased run: in improve --json,
+    in the report of improve --report, and in that of report --run after a
+    JSON tool rewrote the record."""
+    dst = os.path.join(args.out, "box4_ph_json.mesh")
+    html = os.path.join(args.out, "box4_ph_report.html")
+    code, out, err = run(args.bodt, "improve", deformed, dst, "--mode", "phased", "--reference", reference, "--json",
+                         "--report", html)
+    j = one_json_object(out, "improve --mode phased --json") if code == 0 else None
+    if not check(j is not None and "recovery_before" in j and "recovery_after" in j,
+                 "phased --json: exit %d, no recovery_before/after: %r %r" % (code, out[:200], err)):
+        return
+    keys = ("density_mean", "density_max", "geometric_mean", "geometric_max")
+    want = {k: (j["recovery_before"][k], j["recovery_after"][k]) for k in keys}
+    check(want["density_mean"][1] < want["density_mean"][0], "density error did not go down: %r" % want)
+    check(recovery_rows(open(html).read()) == want, "improve --report: recovery rows %r, JSON %r" %
+          (recovery_rows(open(html).read()), want))
+    run_file = os.path.join(args.out, "box4_ph_run.json")
+    with open(run_file, "w") as f:
+        json.dump(j, f, indent=2)
+    back = os.path.join(args.out, "box4_ph_back.html")
+    code, out, err = run(args.bodt, "report", deformed, dst, "-o", back, "--run", run_file, "-q")
+    if check(code == 0, "report --run of a phased run: exit %d %r" % (code, err)):
+        check(recovery_rows(open(back).read()) == want, "report --run: recovery rows %r, JSON %r" %
+              (recovery_rows(open(back).read()), want))
+
+
 def case_improve_phased(args):
     """--mode phased --reference (paper 002) on a jittered 4 x 4 x 4 box whose
     side x = 2 was moved to x = 1.2 without moving the inside, so that tets
@@ -488,6 +522,7 @@ def case_improve_phased(args):
     check(m is not None, "no density error row in %r" % out)
     if m:
         check(float(m.group(2)) < float(m.group(1)), "density error did not go down: %s -> %s" % m.groups())
+    check_recovery_record(args, deformed, src)
     code, _, err = run(args.bodt, "improve", deformed, dst, "--mode", "odt", "--reference", src)
     check(code == 1 and "--reference" in err, "--reference with --mode odt: exit %d, %r" % (code, err))
     print("phased: %d of %d tets inverted -> %d; summary %r; %s" % (inverted, len(tets), left, summary,
