@@ -202,21 +202,28 @@ bodt::MeshData sample_mesh() {
     return d;
 }
 
-// The sample as a .meshb of `version`, in either byte order, with keywords
-// to skip in between.  The marks name the offsets of keywords and fields.
-Gmf sample_file(bool big, int version) {
-    const bodt::MeshData d = sample_mesh();
+// The start of a .meshb of `version`: Dimension 3, then Vertices at `xyz`
+// with vertex refs `refs` (their fields marked x<v> and vref<v>).
+Gmf with_vertices(bool big, int version, const std::vector<double>& xyz, const std::vector<int32_t>& refs) {
     Gmf g(big, version);
     g.keyword(3, "Dimension");
     g.i32(3);  // 4 bytes in every version (libMeshb's GmfOpenMesh)
     g.keyword(4, "Vertices");
-    g.integer(5);
-    for (int v = 0; v < 5; ++v) {
+    g.integer(static_cast<int64_t>(refs.size()));
+    for (size_t v = 0; v < refs.size(); ++v) {
         g.mark("x" + std::to_string(v + 1));
-        for (int c = 0; c < 3; ++c) g.real(d.xyz[3 * v + c]);
+        for (size_t c = 0; c < 3; ++c) g.real(xyz[3 * v + c]);
         g.mark("vref" + std::to_string(v + 1));
-        g.integer(d.vertex_refs[v]);
+        g.integer(refs[v]);
     }
+    return g;
+}
+
+// The sample as a .meshb of `version`, in either byte order, with keywords
+// to skip in between.  The marks name the offsets of keywords and fields.
+Gmf sample_file(bool big, int version) {
+    const bodt::MeshData d = sample_mesh();
+    Gmf g = with_vertices(big, version, d.xyz, d.vertex_refs);
     g.keyword(200, "Unknown");  // not a libMeshb keyword: skipped by position
     for (int k = 0; k < 13; ++k) g.raw(0xA5, 1);
     g.keyword(8, "Tetrahedra");
@@ -432,33 +439,40 @@ void test_ascii_vs_binary(void**) {
     }
 }
 
-void test_versions(void**) {
-    const char* what = "versions";
+// The file build(big_endian, version) gives, for versions 1 to 4 in both
+// byte orders, written as <stem><version><le|be>.meshb: each must read as
+// `want`.
+template <class Build>
+void check_every_layout(const char* what, const std::string& stem, Build build, const bodt::MeshData& want) {
     for (int version = 1; version <= 4; ++version)
         for (int big = 0; big < 2; ++big) {
-            const Gmf g = sample_file(big != 0, version);
-            const std::string path = scratch("v" + std::to_string(version) + (big ? "be" : "le") + ".meshb");
-            write_bytes(path, g.b);
-            CHECK(g.b[0] == (big ? 0 : 1) && g.b[3] == (big ? 1 : 0), "code bytes");
+            const std::string path = scratch(stem + std::to_string(version) + (big ? "be" : "le") + ".meshb");
+            write_bytes(path, build(big != 0, version).b);
             bodt::MeshData got;
             try {
                 got = bodt::read_medit_binary(path);
             } catch (const bodt::Error& e) {
                 CHECK(false, "version %d %s: %s", version, big ? "big-endian" : "little-endian", e.what());
             }
-            check_same(what, got, sample_mesh(), true);
+            check_same(what, got, want, true);
         }
+}
+
+void test_versions(void**) {
+    const char* what = "versions";
+    check_every_layout(
+        what, "v",
+        [&](bool big, int version) {
+            Gmf g = sample_file(big, version);
+            CHECK(g.b[0] == (big ? 0 : 1) && g.b[3] == (big ? 1 : 0), "code bytes");
+            return g;
+        },
+        sample_mesh());
     // Version 1 rounds to float: 0.1 comes back as (double)0.1f.
     bodt::MeshData d = sample_mesh();
-    Gmf g(false, 1);
-    g.keyword(3, "Dimension");
-    g.i32(3);
-    g.keyword(4, "Vertices");
-    g.integer(5);
-    for (int v = 0; v < 5; ++v) {
-        for (int c = 0; c < 3; ++c) g.real(v == 1 && c == 1 ? 0.1 : d.xyz[3 * v + c]);
-        g.integer(0);
-    }
+    std::vector<double> xyz = d.xyz;
+    xyz[4] = 0.1;  // y of vertex 2
+    Gmf g = with_vertices(false, 1, xyz, std::vector<int32_t>(5, 0));
     g.keyword(8, "Tetrahedra");
     g.integer(1);
     for (int x : {1, 2, 3, 4, 6}) g.integer(x);
@@ -474,15 +488,7 @@ void test_versions(void**) {
 
     // Ridges before Edges: its indices are checked against every edge of
     // the file, not only those read so far.
-    g = Gmf(true, 3);
-    g.keyword(3, "Dimension");
-    g.i32(3);
-    g.keyword(4, "Vertices");
-    g.integer(5);
-    for (int v = 0; v < 5; ++v) {
-        for (int c = 0; c < 3; ++c) g.real(d.xyz[3 * v + c]);
-        g.integer(v);
-    }
+    g = with_vertices(true, 3, d.xyz, {0, 1, 2, 3, 4});
     g.keyword(14, "Ridges");
     g.integer(1);
     g.integer(2);
@@ -606,15 +612,7 @@ std::string medit_text(const std::vector<Section>& sections) {
 // The same as a .meshb.
 Gmf medit_binary(const std::vector<Section>& sections, bool big, int version) {
     const bodt::MeshData d = sample_mesh();
-    Gmf g(big, version);
-    g.keyword(3, "Dimension");
-    g.i32(3);
-    g.keyword(4, "Vertices");
-    g.integer(5);
-    for (int v = 0; v < 5; ++v) {
-        for (int c = 0; c < 3; ++c) g.real(d.xyz[3 * v + c]);
-        g.integer(d.vertex_refs[v]);
-    }
+    Gmf g = with_vertices(big, version, d.xyz, d.vertex_refs);
     for (const Section& s : sections) {
         g.keyword(s.code, s.name);
         g.integer(static_cast<int64_t>(s.ints.size()) / s.fields);
@@ -630,18 +628,9 @@ void test_repeated(void**) {
     const std::string text = scratch("repeated.mesh");
     write_text(text, medit_text(sections));
     check_same(what, bodt::read_medit(text), repeated_mesh(), true);
-    for (int version = 1; version <= 4; ++version)
-        for (int big = 0; big < 2; ++big) {
-            const std::string path = scratch("repeated.meshb");
-            write_bytes(path, medit_binary(sections, big != 0, version).b);
-            bodt::MeshData got;
-            try {
-                got = bodt::read_medit_binary(path);
-            } catch (const bodt::Error& e) {
-                CHECK(false, "version %d %s: %s", version, big ? "big-endian" : "little-endian", e.what());
-            }
-            check_same(what, got, repeated_mesh(), true);
-        }
+    check_every_layout(
+        what, "repeated_v", [&](bool big, int version) { return medit_binary(sections, big, version); },
+        repeated_mesh());
 
     // A second Vertices keyword: refused at its byte, naming the first's.
     Gmf g = medit_binary({sections[0]}, false, 2);

@@ -249,11 +249,10 @@ void test_vtk_files(void**) {
           "the blocks file's arrays");
     const size_t points = blocks.find("offset=\"", blocks.find("Name=\"Points\""));
     const size_t data = blocks.find('_', blocks.find("<AppendedData")) + 1;
-    if (points != std::string::npos && data != 0) {
-        uint32_t n = 0;
-        std::memcpy(&n, blocks.data() + data + std::strtoul(blocks.c_str() + points + 8, nullptr, 10), 4);
-        CHECK(n == 8, "the points of the blocks file are in %u blocks", n);
-    }
+    CHECK(points != std::string::npos && data != 0, "the blocks file's points offset or appended data not found");
+    uint32_t nblocks = 0;
+    std::memcpy(&nblocks, blocks.data() + data + std::strtoul(blocks.c_str() + points + 8, nullptr, 10), 4);
+    CHECK(nblocks == 8, "the points of the blocks file are in %u blocks", nblocks);
     for (const char* c : {"LZ4", "LZMA"}) {
         const std::string file = std::string("vtk_appended_raw_") + (c[2] == '4' ? "lz4" : "lzma") + ".vtu";
         const std::string path = g_data + "/vtu/" + file;
@@ -361,10 +360,13 @@ void test_hostile(void**) {
             zbad("shorter", with(zheader({1, 5, 0, cs}, h), stream), "inflates to 4 bytes, not the 5 it claims");
             zbad("empty_block", with(zheader({1, 4, 0, 0}, h), stream), "claims 4 bytes from 0 compressed bytes");
             // A claim zlib could meet, from a stream that is garbage: the
-            // reader stops at the garbage without allocating the claim.
-            std::vector<uint8_t> garbage(200, 0xA5);
+            // reader stops at the garbage without allocating the claim
+            // (20 MB, over kAllocLimit).
+            constexpr uint32_t gs = 20000;
+            static_assert(uint64_t{1032} * gs > io_test::kAllocLimit, "the claim must exceed the limit");
+            std::vector<uint8_t> garbage(gs, 0xA5);
             garbage[0] = 0x78, garbage[1] = 0x9C;
-            zbad("garbage", with(zheader({1, 1032 * 200, 0, 200}, h), garbage), "is not valid zlib data");
+            zbad("garbage", with(zheader({1, 1032 * gs, 0, gs}, h), garbage), "is not valid zlib data");
             // Two blocks whose data fits but whose count does not.
             zbad("count", with(zheader({2, 4, 0, cs, cs}, h), with(stream, stream)),
                  "NumberOfCells is 4 but there are 8 types");

@@ -39,6 +39,7 @@
 // Error(BODT_ERR_IO, "<path>: byte <offset>: ...").
 #include "io/medit_binary.hpp"
 
+#include "io/byte_order.hpp"
 #include "io/output_file.hpp"
 
 #include "bodt.h"
@@ -108,24 +109,15 @@ struct Layout {
     int pos_size = 4;   // next-keyword positions
 };
 
-uint64_t load(const unsigned char* p, int size, bool big_endian) {
-    uint64_t v = 0;
-    for (int k = 0; k < size; ++k) {
-        const unsigned char byte = big_endian ? p[k] : p[size - 1 - k];
-        v = (v << 8) | byte;
-    }
-    return v;
-}
-
 // A signed int of 4 or 8 bytes.
 int64_t load_int(const unsigned char* p, int size, bool big_endian) {
-    const uint64_t v = load(p, size, big_endian);
+    const uint64_t v = load_uint(p, size, big_endian);
     if (size == 4) return static_cast<int32_t>(static_cast<uint32_t>(v));
     return static_cast<int64_t>(v);
 }
 
 double load_real(const unsigned char* p, int size, bool big_endian) {
-    const uint64_t v = load(p, size, big_endian);
+    const uint64_t v = load_uint(p, size, big_endian);
     if (size == 4) {
         const uint32_t bits = static_cast<uint32_t>(v);
         float f;
@@ -225,13 +217,13 @@ private:
         if (in_.size() < 8)
             in_.fail(in_.size(), "the file is truncated: a .meshb file starts with 8 bytes (code and version)");
         in_.read(0, 8, b, "the header");
-        if (load(b, 4, false) == 1)
+        if (load_uint(b, 4, false) == 1)
             lay_.big_endian = false;
-        else if (load(b, 4, true) == 1)
+        else if (load_uint(b, 4, true) == 1)
             lay_.big_endian = true;
         else {
             char hex[16];
-            std::snprintf(hex, sizeof hex, "0x%08llx", static_cast<unsigned long long>(load(b, 4, false)));
+            std::snprintf(hex, sizeof hex, "0x%08llx", static_cast<unsigned long long>(load_uint(b, 4, false)));
             in_.fail(0,
                      std::string("not a Medit binary mesh: the first word is ") + hex + ", not 1 in either byte order");
         }

@@ -54,15 +54,17 @@ bool listed(const char* const (&names)[N], const std::string& name) {
     return false;
 }
 
-// The first of `names` that `arrays` has, or an empty array.
+// The first of `names` that `arrays` has, or an empty array; not a copy
+// (one array may serve two lists, gmsh:physical as regions and markers).
 template <size_t N>
-std::vector<int64_t> first_of(const std::map<std::string, std::vector<int64_t>>& arrays,
-                              const char* const (&names)[N]) {
+const std::vector<int64_t>& first_of(const std::map<std::string, std::vector<int64_t>>& arrays,
+                                     const char* const (&names)[N]) {
+    static const std::vector<int64_t> none;
     for (const char* n : names) {
         const auto it = arrays.find(n);
         if (it != arrays.end()) return it->second;
     }
-    return {};
+    return none;
 }
 
 }  // namespace
@@ -76,11 +78,11 @@ bool vtk_reads_point_array(const std::string& name) {
 }
 
 MeshData mesh_from_vtk(VtkGrid g, const VtkFail& fail) {
-    const std::vector<int64_t> region = first_of(g.cell_arrays, kRegionArrays);
-    const std::vector<int64_t> marker = first_of(g.cell_arrays, kMarkerArrays);
-    const std::vector<int64_t> ref = first_of(g.point_arrays, kRefArrays);
-    const std::vector<int64_t> fixed = first_of(g.point_arrays, kFixedArrays);
-    const std::vector<int64_t> corner = first_of(g.point_arrays, kCornerArrays);
+    const std::vector<int64_t>& region = first_of(g.cell_arrays, kRegionArrays);
+    const std::vector<int64_t>& marker = first_of(g.cell_arrays, kMarkerArrays);
+    const std::vector<int64_t>& ref = first_of(g.point_arrays, kRefArrays);
+    const std::vector<int64_t>& fixed = first_of(g.point_arrays, kFixedArrays);
+    const std::vector<int64_t>& corner = first_of(g.point_arrays, kCornerArrays);
     const int64_t ncells = static_cast<int64_t>(g.types.size());
     const int64_t nconn = static_cast<int64_t>(g.connectivity.size());
     if (static_cast<int64_t>(g.offsets.size()) != ncells)

@@ -7,6 +7,7 @@
 // file can make it allocate more than the file could hold.
 #include "io/vtk_legacy.hpp"
 
+#include "io/byte_order.hpp"
 #include "io/output_file.hpp"
 #include "io/text_scanner.hpp"
 #include "io/vtk_cells.hpp"
@@ -215,8 +216,7 @@ public:
         if (binary_) {
             const auto* p = reinterpret_cast<const unsigned char*>(text_.data() + pos_);
             for (int64_t k = 0; k < n; ++k, p += type.size) {
-                uint64_t bits = 0;
-                for (int b = 0; b < type.size; ++b) bits = (bits << 8) | p[b];
+                const uint64_t bits = load_uint(p, type.size, true);  // legacy binary is big-endian
                 if (!type.integer) {
                     double v;
                     if (type.size == 4) {

@@ -8,6 +8,7 @@
 // actually present and only then compared with NumberOfPoints / Cells.
 #include "io/vtu.hpp"
 
+#include "io/byte_order.hpp"
 #include "io/output_file.hpp"
 #include "io/text_scanner.hpp"
 #include "io/vtk_cells.hpp"
@@ -45,8 +46,8 @@ struct XmlElement {
     };
     std::vector<Range> text;
     // Raw appended data (<AppendedData encoding="raw">): the bytes after
-    // its '_', [raw_begin, raw_end) of the file, never parsed as XML.
-    bool raw = false;
+    // its '_', [raw_begin, raw_end) of the file, never parsed as XML; an
+    // empty range for a self-closing one.
     size_t raw_begin = 0, raw_end = 0;
 
     const std::string* attr(const char* key) const {
@@ -167,7 +168,6 @@ private:
         const size_t end = buf_.rfind("</AppendedData>");
         if (end == std::string::npos || end <= q)
             fail_at(e.offset, "unexpected end of file: raw <AppendedData> without </AppendedData>");
-        e.raw = true;
         e.raw_begin = q + 1;
         e.raw_end = end;
         p = end;
@@ -385,12 +385,6 @@ struct BinaryLayout {
     std::string_view appended_data;
 };
 
-uint64_t load_le(const uint8_t* p, int size) {
-    uint64_t v = 0;
-    for (int k = size - 1; k >= 0; --k) v = (v << 8) | p[k];
-    return v;
-}
-
 // The data bytes of the binary or appended DataArray `e`.
 std::vector<uint8_t> binary_bytes(const XmlDocument& doc, const XmlElement& e, const std::string& label,
                                   bool appended, const BinaryLayout& layout) {
@@ -494,7 +488,7 @@ Array decode_array(const XmlDocument& doc, const XmlElement& e, const BinaryLayo
         if (is_float(a.type)) {
             a.f.resize(count);
             for (size_t k = 0; k < count; ++k) {
-                const uint64_t bits = load_le(data + k * static_cast<size_t>(info->size), info->size);
+                const uint64_t bits = load_uint(data + k * static_cast<size_t>(info->size), info->size, false);
                 if (a.type == Scalar::Float64) {
                     std::memcpy(&a.f[k], &bits, 8);
                 } else {
@@ -507,7 +501,7 @@ Array decode_array(const XmlDocument& doc, const XmlElement& e, const BinaryLayo
         } else {
             a.i.resize(count);
             for (size_t k = 0; k < count; ++k) {
-                const uint64_t bits = load_le(data + k * static_cast<size_t>(info->size), info->size);
+                const uint64_t bits = load_uint(data + k * static_cast<size_t>(info->size), info->size, false);
                 int64_t v;
                 switch (a.type) {
                     case Scalar::Int8: v = static_cast<int8_t>(bits); break;
@@ -682,9 +676,8 @@ MeshData read_vtu(const std::string& path) {
     if (const XmlElement* a = layout.appended) {
         const std::string* encoding = a->attr("encoding");
         if (!encoding || *encoding == "raw") {
-            layout.appended_raw = true;  // a self-closing <AppendedData/> holds no bytes
-            if (a->raw)
-                layout.appended_data = std::string_view(doc.buffer()).substr(a->raw_begin, a->raw_end - a->raw_begin);
+            layout.appended_raw = true;
+            layout.appended_data = std::string_view(doc.buffer()).substr(a->raw_begin, a->raw_end - a->raw_begin);
         } else if (*encoding == "base64") {
             appended_text = element_text(doc, *a);
             const std::string_view t = appended_text.text();

@@ -1,6 +1,8 @@
 // Binary DataArray data of .vtu files: see vtu_binary.hpp.
 #include "io/vtu_binary.hpp"
 
+#include "io/byte_order.hpp"
+
 #include <zlib.h>
 
 #include <algorithm>
@@ -17,12 +19,6 @@ constexpr uint64_t kMaxInflateRatio = 1032;
 // Output of inflate is added in pieces of at most this many bytes, so that
 // a block claiming more than its stream holds costs no more than this.
 constexpr size_t kInflateChunk = size_t{1} << 20;
-
-uint64_t load_le(const uint8_t* p, int size) {
-    uint64_t v = 0;
-    for (int k = size - 1; k >= 0; --k) v = (v << 8) | p[k];
-    return v;
-}
 
 // Inflates the zlib stream in[0, in_size) onto the end of `out`: it must
 // give exactly `size` bytes and end with the input.  Returns what is wrong,
@@ -139,7 +135,7 @@ std::vector<uint8_t> read_vtu_array_bytes(VtuByteSource& in, int header_size, Vt
                  " bytes needed, but at most " + std::to_string(in.max_left()) + " follow");
         const uint8_t* p = in.take(static_cast<size_t>(count * hs));
         std::vector<uint64_t> v(static_cast<size_t>(count));
-        for (size_t k = 0; k < v.size(); ++k) v[k] = load_le(p + k * hs, header_size);
+        for (size_t k = 0; k < v.size(); ++k) v[k] = load_uint(p + k * hs, header_size, false);
         return v;
     };
 
