@@ -36,7 +36,10 @@ extern "C" {
 #endif
 
 /* Only the library's own build marks symbols for export; consumers see plain
- * declarations (which keeps the header parseable by cffi after cc -E). */
+ * declarations (which keeps the header parseable by cffi after cc -E).  The
+ * Python package's cffi_cdef() (bindings/python/bodt/_cdef.py) reads this
+ * header's directives itself: #ifdef, #ifndef, #if defined(A) && ...,
+ * #else, #endif and object-like #defines; it refuses anything else. */
 #if defined(BODT_BUILDING_LIBRARY) && defined(__GNUC__)
 #define BODT_API __attribute__((visibility("default")))
 #else

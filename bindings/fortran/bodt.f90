@@ -17,7 +17,8 @@
 !    allocatable, intent(out) arrays themselves.
 !  - Indices are 1-based by default: bodt_mesh_create and bodt_mesh_read
 !    take an optional index_base (default 1, where C has no default for
-!    create and reads 0-based).
+!    create and reads 0-based; a read with BODT_CREATE_FILE_BASE and no
+!    index_base counts as the file does).
 !  - Status, in the style of Gmsh's gmsh.f90: every wrapper that can fail
 !    ends with an optional `ierr`.  Given, it receives BODT_OK (0) or a
 !    negative BODT_ERR_* code and the caller checks it.  Omitted, a failure
@@ -641,7 +642,8 @@ contains
   end subroutine bodt_mesh_read_format
 
   ! Base 1 is BODT_CREATE_ONE_BASED; any base but 0 and 1 is refused here, as
-  ! bodt_mesh_create refuses it.
+  ! bodt_mesh_create refuses it.  Without index_base the base is 1, but with
+  ! BODT_CREATE_FILE_BASE the file's (bodt_mesh_get_index_base tells which).
   subroutine read_file(name, path, format, flags, mesh, index_base, ierr)
     character(len=*), intent(in) :: name, path
     integer(c_int), intent(in) :: format
@@ -649,24 +651,20 @@ contains
     type(bodt_mesh_t), intent(inout) :: mesh
     integer(c_int), intent(in), optional :: index_base
     integer(c_int), intent(out), optional :: ierr
-    integer(c_int) :: base
+    logical :: one_based
     character(len=12) :: text
-    if (iand(flags, BODT_CREATE_FILE_BASE) /= 0 .and. .not. present(index_base)) then
-      ! The file's base: bodt_mesh_get_index_base tells which.
-      call finish(c_bodt_mesh_read_format(c_path(path), format, flags, mesh%ptr), name, mesh, ierr)
-      return
+    one_based = iand(flags, BODT_CREATE_FILE_BASE) == 0
+    if (present(index_base)) then
+      if (index_base /= 0 .and. index_base /= 1) then
+        write (text, '(i0)') index_base
+        call finish(BODT_ERR_INVALID_ARGUMENT, name, mesh, ierr, 'index_base is ' // trim(text) // ', not 0 or 1')
+        return
+      end if
+      one_based = index_base == 1
     end if
-    base = 1
-    if (present(index_base)) base = index_base
-    if (base == 0) then
-      call finish(c_bodt_mesh_read_format(c_path(path), format, flags, mesh%ptr), name, mesh, ierr)
-    else if (base == 1) then
-      call finish(c_bodt_mesh_read_format(c_path(path), format, ior(flags, BODT_CREATE_ONE_BASED), mesh%ptr), &
-                  name, mesh, ierr)
-    else
-      write (text, '(i0)') base
-      call finish(BODT_ERR_INVALID_ARGUMENT, name, mesh, ierr, 'index_base is ' // trim(text) // ', not 0 or 1')
-    end if
+    call finish(c_bodt_mesh_read_format(c_path(path), format, &
+                                        merge(ior(flags, BODT_CREATE_ONE_BASED), flags, one_based), mesh%ptr), &
+                name, mesh, ierr)
   end subroutine read_file
 
   subroutine bodt_mesh_write(mesh, path, ierr)

@@ -543,6 +543,15 @@ contains
     call check(base == 1, 'index base of a file read: 1 by default')
     call bodt_mesh_destroy(back)
 
+    ! BODT_CREATE_FILE_BASE without index_base: the file's own base (VTU's 0)
+    call bodt_mesh_write(mesh, 'test_bodt_f.vtu')
+    call bodt_mesh_read_ex('test_bodt_f.vtu', BODT_CREATE_FILE_BASE, back)
+    call bodt_mesh_get_index_base(back, base)
+    call check(base == 0, 'index base of a VTU file read with BODT_CREATE_FILE_BASE')
+    call bodt_mesh_get_tets(back, got)
+    call check(all(got + 1 == tets), 'tets through the VTU file, in its base')
+    call bodt_mesh_destroy(back)
+
     ! Gmsh 4.1 binary, chosen explicitly (the name says nothing)
     call bodt_mesh_write_format(mesh, 'test_bodt_f_gmsh.bin', BODT_FORMAT_GMSH_BINARY)
     call bodt_mesh_read_format('test_bodt_f_gmsh.bin', BODT_FORMAT_GMSH, BODT_CREATE_DEFAULT, back)

@@ -11,7 +11,7 @@ import operator
 import numpy as np
 from numpy.typing import ArrayLike, DTypeLike
 
-__all__ = ["INT_DTYPES", "float_array", "index_array", "int32", "int_dtype", "pointer"]
+__all__ = ["INT_DTYPES", "checked_int_dtype", "float_array", "index_array", "int32", "pointer"]
 
 #: The dtypes a Mesh may give its integer arrays in (its ``int_dtype``).
 INT_DTYPES = (np.dtype(np.int64), np.dtype(np.int32))
@@ -69,7 +69,7 @@ def index_array(values: ArrayLike, shape: tuple[int | None, ...], name: str) -> 
     return np.ascontiguousarray(array, dtype=np.int32)
 
 
-def int_dtype(value: DTypeLike) -> np.dtype:
+def checked_int_dtype(value: DTypeLike) -> np.dtype:
     """``value`` checked to be one of INT_DTYPES."""
     dtype = np.dtype(value)
     if dtype not in INT_DTYPES:

@@ -8,15 +8,18 @@ preprocessor would, for what bodt.h uses and nothing more:
 
 - ``#include`` of a standard header is left out (cffi knows ``size_t`` and
   the ``intN_t`` types);
-- ``#ifdef``, ``#ifndef``, ``#if`` with ``defined(NAME)``, ``!``, ``&&``,
-  ``||`` and parentheses, ``#elif``, ``#else``, ``#endif`` choose the lines
-  a C compiler without ``__cplusplus`` and ``__GNUC__`` would see;
+- ``#ifdef``, ``#ifndef``, ``#if defined(A) && defined(B) ...``, ``#else``
+  and ``#endif`` choose the lines a C compiler sees that defines none of
+  the macros bodt.h tests but bodt.h's own (no ``__cplusplus``,
+  ``__GNUC__`` or ``BODT_BUILDING_LIBRARY``);
 - ``#define NAME <integer>`` stays, as cffi takes it (a constant on the
   library object, also usable as an array length); any other object-like
   macro (``BODT_API``) is replaced by its value where it is used.
 
-Anything else (function-like macros, other directives) raises RuntimeError:
-a header this reader does not understand fails loudly, never silently.
+Anything else (``#elif``, other #if conditions, function-like macros, other
+directives) raises RuntimeError: a header this reader does not understand
+fails loudly, never silently.  tests/test_cffi_header.py checks the result
+against what the C preprocessor gives.
 """
 
 import functools
@@ -32,53 +35,24 @@ HEADER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bodt.h")
 _KNOWN_INCLUDES = {"<stddef.h>", "<stdint.h>"}
 _INTEGER = re.compile(r"\(?\s*(-?\s*(?:0[xX][0-9a-fA-F]+|\d+))\s*\)?")
 _DIRECTIVE = re.compile(r"\s*#\s*(\w+)\s*(.*?)\s*")
-_CONDITION_TOKEN = re.compile(r"\s*(defined\s*\(\s*\w+\s*\)|defined\s+\w+|&&|\|\||!|\(|\))\s*")
+_ALL_DEFINED = re.compile(r"defined\s*\(\s*\w+\s*\)(\s*&&\s*defined\s*\(\s*\w+\s*\))*")
 
 
-def _evaluate(condition: str, macros: dict[str, str]) -> bool:
-    """An #if condition made only of defined(NAME), !, &&, || and parentheses."""
-    tokens = []
-    position = 0
-    while position < len(condition):
-        token = _CONDITION_TOKEN.match(condition, position)
-        if token is None:
-            raise RuntimeError(f"bodt.h: cffi_cdef cannot evaluate '#if {condition}'")
-        tokens.append(token.group(1))
-        position = token.end()
-    tokens.append("")  # the end
+def _condition(directive: str, argument: str, macros: dict[str, str]) -> bool:
+    """An #if's, #ifdef's or #ifndef's condition, no macro being defined but the header's own (``macros``).
 
-    # C's precedence: ! binds tighter than &&, && tighter than ||
-    def either() -> bool:
-        value = both()
-        while tokens[0] == "||":
-            tokens.pop(0)
-            value = both() or value
-        return value
-
-    def both() -> bool:
-        value = single()
-        while tokens[0] == "&&":
-            tokens.pop(0)
-            value = single() and value
-        return value
-
-    def single() -> bool:
-        token = tokens.pop(0)
-        if token == "!":
-            return not single()
-        if token == "(":
-            value = either()
-            if tokens.pop(0) != ")":
-                raise RuntimeError(f"bodt.h: unbalanced parentheses in '#if {condition}'")
-            return value
-        if token.startswith("defined"):
-            return re.sub(r"defined|[()\s]", "", token) in macros
-        raise RuntimeError(f"bodt.h: cffi_cdef cannot evaluate '#if {condition}'")
-
-    value = either()
-    if tokens != [""]:
-        raise RuntimeError(f"bodt.h: cffi_cdef cannot evaluate '#if {condition}'")
-    return value
+    An #if may only test that names are all defined, as bodt.h's one #if
+    does (``defined(BODT_BUILDING_LIBRARY) && defined(__GNUC__)``, which
+    picks BODT_API's value): a reader of more would be code that bodt.h
+    never runs.
+    """
+    if directive == "ifdef":
+        return argument in macros
+    if directive == "ifndef":
+        return argument not in macros
+    if not _ALL_DEFINED.fullmatch(argument):
+        raise RuntimeError(f"bodt.h: cffi_cdef cannot evaluate '#if {argument}'")
+    return all(name in macros for name in re.findall(r"(\w+)\s*\)", argument))
 
 
 def declarations(header: str) -> str:
@@ -88,37 +62,34 @@ def declarations(header: str) -> str:
     text = text.replace("\\\n", " ")
     macros: dict[str, str] = {}  # every macro defined so far -> its value
     substitutions: dict[str, str] = {}  # the non-integer ones, replaced where used
-    active = [True]  # per open #if: whether its current branch is kept (and all enclosing ones)
-    taken = [True]  # per open #if: whether one of its branches was kept already
+    kept = True  # whether the lines here are kept
+    open_ifs: list[tuple[bool, bool]] = []  # per open #if: (whether the lines around it are kept, its condition)
     lines = []
     for line in text.splitlines():
         directive = _DIRECTIVE.fullmatch(line) if line.lstrip().startswith("#") else None
         if directive is None:
-            if active[-1] and line.strip():
+            if kept and line.strip():
                 for name, value in substitutions.items():
                     line = re.sub(rf"\b{name}\b" + ("" if value else r"\s*"), value, line)
                 lines.append(line.rstrip())
             continue
         name, argument = directive.groups()
         if name in ("if", "ifdef", "ifndef"):
-            if name == "if":
-                keep = _evaluate(argument, macros)
-            else:
-                keep = (argument in macros) == (name == "ifdef")
-            active.append(active[-1] and keep)
-            taken.append(keep)
-        elif name in ("elif", "else"):
-            if len(active) == 1:
+            condition = _condition(name, argument, macros)
+            open_ifs.append((kept, condition))
+            kept = kept and condition
+        elif name in ("else", "endif"):
+            if not open_ifs:
                 raise RuntimeError(f"bodt.h: #{name} without #if")
-            keep = not taken[-1] and (name == "else" or _evaluate(argument, macros))
-            taken[-1] = taken[-1] or keep
-            active[-1] = active[-2] and keep
-        elif name == "endif":
-            if len(active) == 1:
-                raise RuntimeError("bodt.h: #endif without #if")
-            active.pop()
-            taken.pop()
-        elif not active[-1]:
+            around, condition = open_ifs[-1]
+            if name == "else":
+                kept = around and not condition
+            else:
+                kept = around
+                open_ifs.pop()
+        elif name == "elif":  # even in lines left out: it would decide which lines follow
+            raise RuntimeError(f"bodt.h: cffi_cdef does not handle '#elif {argument}'")
+        elif not kept:
             continue
         elif name == "include" and argument in _KNOWN_INCLUDES:
             continue
@@ -133,7 +104,7 @@ def declarations(header: str) -> str:
                 substitutions[macro] = value
         else:
             raise RuntimeError(f"bodt.h: cffi_cdef does not handle '#{name} {argument}'")
-    if len(active) != 1:
+    if open_ifs:
         raise RuntimeError("bodt.h: #if without #endif")
     return "\n".join(lines) + "\n"
 

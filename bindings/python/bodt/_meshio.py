@@ -68,7 +68,7 @@ section of each kind (write .mesh files for them with ``Mesh.write``);
 (``compression=None``) and keep no field data.
 """
 
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import DTypeLike
@@ -104,35 +104,40 @@ def _integers(values: Any, what: str) -> np.ndarray:
     return array
 
 
-class _Cells:
+class _Cells(NamedTuple):
     """The cells of one type from all blocks, each with its tag and Gmsh entity (None: not in the mesh)."""
 
-    def __init__(self, cell_type: str) -> None:
-        self.cell_type = cell_type
-        self.blocks: list[np.ndarray] = []
-        self.block_tags: list[np.ndarray] = []
-        self.block_entities: list[np.ndarray] = []
+    cells: np.ndarray
+    tags: np.ndarray | None
+    entities: np.ndarray | None
 
-    def add(self, cells: np.ndarray, tags: np.ndarray | None, entities: np.ndarray | None) -> None:
-        self.blocks.append(np.asarray(cells).reshape(-1, _WIDTHS[self.cell_type]))
-        if tags is not None:
-            self.block_tags.append(tags)
-        if entities is not None:
-            self.block_entities.append(entities)
 
-    @property
-    def cells(self) -> np.ndarray:
-        if not self.blocks:
-            return np.empty((0, _WIDTHS[self.cell_type]), np.int64)
-        return np.concatenate(self.blocks)
+def _cells_by_type(mesh: Any, tag_name: str | None, gmsh: bool) -> dict[str, _Cells]:
+    """The blocks of each cell type libbodt takes, joined, with their tags and (``gmsh``) Gmsh entities."""
+    numbers: dict[str, list[int]] = {cell_type: [] for cell_type in _WIDTHS}  # each type's blocks
+    for k, block in enumerate(mesh.cells):
+        if block.type in numbers:
+            numbers[block.type].append(k)
+        elif block.dim == 3:
+            raise ValueError(f"the meshio mesh has {block.type!r} cells: libbodt improves 4-node tets only")
+    if not numbers["tetra"]:
+        raise ValueError("the meshio mesh has no 'tetra' cells")
 
-    @property
-    def tags(self) -> np.ndarray | None:
-        return np.concatenate(self.block_tags) if self.block_tags else None
+    def joined(name: str | None, blocks: list[int]) -> np.ndarray | None:
+        if name is None or not blocks:
+            return None
+        return np.concatenate([_integers(mesh.cell_data[name][k], f"cell data {name!r}") for k in blocks])
 
-    @property
-    def entities(self) -> np.ndarray | None:
-        return np.concatenate(self.block_entities) if self.block_entities else None
+    by_type = {}
+    for cell_type, blocks in numbers.items():
+        width = _WIDTHS[cell_type]
+        cells = [np.asarray(mesh.cells[k].data).reshape(-1, width) for k in blocks]
+        by_type[cell_type] = _Cells(
+            np.concatenate(cells) if cells else np.empty((0, width), np.int64),
+            joined(tag_name, blocks),
+            joined("gmsh:geometrical" if gmsh else None, blocks),
+        )
+    return by_type
 
 
 def _several(values: np.ndarray | None) -> bool:
@@ -159,20 +164,9 @@ def from_meshio(
     ref_name = _pick(mesh.point_data, refs, _REF_NAMES, "point data")
     # Gmsh's entity tags, where its physical tags are missing (bodt.h, BODT_FORMAT_GMSH)
     gmsh = tag_name in (None, "gmsh:physical") and "gmsh:geometrical" in mesh.cell_data
-    by_type = {cell_type: _Cells(cell_type) for cell_type in _WIDTHS}
-    for k, block in enumerate(mesh.cells):
-        if block.type in by_type:
-            by_type[block.type].add(
-                block.data,
-                None if tag_name is None else _integers(mesh.cell_data[tag_name][k], f"cell data {tag_name!r}"),
-                _integers(mesh.cell_data["gmsh:geometrical"][k], "cell data 'gmsh:geometrical'") if gmsh else None,
-            )
-        elif block.dim == 3:
-            raise ValueError(f"the meshio mesh has {block.type!r} cells: libbodt improves 4-node tets only")
-    tets = by_type["tetra"]
-    if not tets.blocks:
-        raise ValueError("the meshio mesh has no 'tetra' cells")
-    result = Mesh(mesh.points, tets.cells + base, base=base, accept_inverted=accept_inverted, int_dtype=int_dtype)
+    by_type = _cells_by_type(mesh, tag_name, gmsh)
+    tets = by_type["tetra"].cells + base
+    result = Mesh(mesh.points, tets, base=base, accept_inverted=accept_inverted, int_dtype=int_dtype)
     try:
         _set_cell_data(result, by_type, base)
         if ref_name is not None:
@@ -251,10 +245,12 @@ def to_meshio(mesh: Mesh) -> Any:
         return np.asarray(indices, np.int64) - mesh.base
 
     blocks: list[tuple[str, np.ndarray, int]] = []  # (cell type, cells from 0, tag)
+    entities: list[int] = []  # each block's Gmsh entity: 1, 2, ... per dimension
 
     def add(cell_type: str, cells: np.ndarray, tags: np.ndarray) -> None:
-        for tag in np.unique(tags):
+        for entity, tag in enumerate(np.unique(tags), 1):
             blocks.append((cell_type, zero_based(cells[tags == tag]), int(tag)))
+            entities.append(entity)
 
     add("tetra", mesh.tets, mesh.regions)
     faces = mesh.boundary_faces()
@@ -265,9 +261,6 @@ def to_meshio(mesh: Mesh) -> Any:
     fixed = mesh.fixed_vertices
     add("vertex", fixed[:, None], np.ones(len(fixed), np.int64))
 
-    entities = []  # each block's Gmsh entity: 1, 2, ... per dimension
-    for k, (cell_type, _, _) in enumerate(blocks):
-        entities.append(1 + sum(other == cell_type for other, _, _ in blocks[:k]))
     points = mesh.points
     return meshio.Mesh(
         points,

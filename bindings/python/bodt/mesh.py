@@ -10,7 +10,7 @@ from typing import Any, NoReturn
 import numpy as np
 from numpy.typing import ArrayLike, DTypeLike
 
-from ._arrays import float_array, index_array, int32, int_dtype, pointer
+from ._arrays import checked_int_dtype, float_array, index_array, int32, pointer
 from ._library import STEP_CALLBACK, check, lib
 from .enums import CreateFlag, Format, Measure, Mode, Param
 from .errors import CancelledError
@@ -102,7 +102,7 @@ class Mesh:
         accept_inverted: bool = False,
         int_dtype: DTypeLike = np.int64,
     ) -> None:
-        self.int_dtype = int_dtype
+        dtype = checked_int_dtype(int_dtype)
         xyz = float_array(points, (None, 3), "points")
         vertices = index_array(tets, (None, 4), "tets")
         base = int32(base, "base")
@@ -117,8 +117,7 @@ class Mesh:
             byref(handle),
         )
         check(status, None)
-        self._own(handle.value)
-        self.field_data: dict[str, Any] = {}
+        self._own(handle.value, dtype)
 
     @classmethod
     def read(
@@ -138,12 +137,11 @@ class Mesh:
         if base not in bases:
             raise ValueError(f"base is {base!r}, not 0, 1 or 'file'")
         flags = _flags(accept_inverted) | bases[base]
+        dtype = checked_int_dtype(int_dtype)  # before the read: a refusal after it would leak the handle
         handle = c_void_p()
         check(lib.bodt_mesh_read_format(os.fsencode(path), int32(format, "format"), flags, byref(handle)), None)
         mesh = cls.__new__(cls)
-        mesh.int_dtype = int_dtype
-        mesh._own(handle.value)
-        mesh.field_data = {}
+        mesh._own(handle.value, dtype)
         return mesh
 
     @property
@@ -153,11 +151,14 @@ class Mesh:
 
     @int_dtype.setter
     def int_dtype(self, value: DTypeLike) -> None:
-        self._int_dtype = int_dtype(value)
+        self._int_dtype = checked_int_dtype(value)
 
-    def _own(self, handle: int) -> None:
+    def _own(self, handle: int, int_dtype: np.dtype) -> None:
+        """Take ``handle`` (freed with this Mesh) and set up what every Mesh has besides it."""
         self._handle_value = handle
         self._finalizer = weakref.finalize(self, lib.bodt_mesh_destroy, handle)
+        self._int_dtype = int_dtype
+        self.field_data: dict[str, Any] = {}
 
     # ------------------------------------------------------------ lifetime
 

@@ -179,6 +179,9 @@ class TestConstruction(ErrorAssertions):
             self.assertEqual((wide.tets.dtype, narrow.tets.dtype), (np.int64, np.int32))
         with self.assertRaisesRegex(ValueError, "int_dtype must be numpy.int64 or numpy.int32, got float64"):
             bodt.Mesh(points, tets, int_dtype=float)
+        # refused before the file is read (not a FileError), so that no handle is made to leak
+        with self.assertRaisesRegex(ValueError, "int_dtype must be numpy.int64 or numpy.int32, got float64"):
+            bodt.Mesh.read(os.path.join(directory.name, "missing.mesh"), int_dtype=float)
 
     def test_shape_errors_before_the_library(self):
         points, tets = meshes.box(1)

@@ -77,6 +77,7 @@ class TestDeclarations(unittest.TestCase):
         self.assertIn("BODT_OPS_MODE_DEFAULT", mine)
 
     def test_shipped_header_is_this_header(self):
+        """cffi_cdef() reads the package's copy of bodt.h (staged, or installed): it must be the header itself."""
         with open(_cdef.HEADER, "rb") as shipped, open(HEADER, "rb") as header:
             self.assertEqual(shipped.read(), header.read())
 
@@ -88,12 +89,17 @@ class TestDeclarations(unittest.TestCase):
             #define API
             #define COUNT (3)
             #define NEGATIVE (-2)
-            #if defined(GUARD) && !(defined(__GNUC__) || defined __cplusplus)
-            API int32_t kept(int32_t x[COUNT]);  /* #not a directive */
-            #elif defined(GUARD)
+            #if defined(GUARD) && defined(__GNUC__)
             int not_this(void);
             #else
+            API int32_t kept(int32_t x[COUNT]);  /* #not a directive */
+            #endif
+            #if defined( GUARD )
+            #ifdef __GNUC__
             int nor_this(void);
+            #endif
+            #else
+            int nor_that(void);
             #endif
             #ifdef __cplusplus
             extern "C" {
@@ -110,7 +116,10 @@ class TestDeclarations(unittest.TestCase):
             ("#define MAX(a, b) ((a) > (b) ? (a) : (b))", "does not handle '#define MAX(a, b)"),
             ('#include "other.h"', "does not handle '#include \"other.h\"'"),
             ("#if VERSION > 2\n#endif", "cannot evaluate '#if VERSION > 2'"),
-            ("#if (defined(A)\n#endif", "unbalanced parentheses"),
+            ("#if (defined(A)\n#endif", "cannot evaluate '#if (defined(A)'"),
+            ("#if defined(A) || !defined(B)\n#endif", "cannot evaluate '#if defined(A) || !defined(B)'"),
+            ("#ifdef A\n#elif defined(B)\n#endif", "does not handle '#elif defined(B)'"),
+            ("#else", "#else without #if"),
             ("#ifdef A", "#if without #endif"),
             ("#endif", "#endif without #if"),
             ("#pragma once", "does not handle '#pragma once'"),

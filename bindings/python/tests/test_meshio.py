@@ -63,15 +63,22 @@ def marked_box() -> bodt.Mesh:
     return mesh
 
 
-class TestToMeshio(unittest.TestCase):
+class FileTestCase(unittest.TestCase):
+    """A test with a temporary directory for its files."""
+
     def setUp(self):
-        self.mesh = marked_box()
-        self.addCleanup(self.mesh.close)
         self.tmp = tempfile.TemporaryDirectory()
         self.addCleanup(self.tmp.cleanup)
 
     def path(self, name: str) -> str:
         return os.path.join(self.tmp.name, name)
+
+
+class TestToMeshio(FileTestCase):
+    def setUp(self):
+        super().setUp()
+        self.mesh = marked_box()
+        self.addCleanup(self.mesh.close)
 
     def test_blocks_and_data(self):
         converted = self.mesh.to_meshio()
@@ -227,15 +234,8 @@ class TestFromMeshio(unittest.TestCase):
             bodt.from_meshio(big)
 
 
-class TestMeditFilesOfMeshio(unittest.TestCase):
+class TestMeditFilesOfMeshio(FileTestCase):
     """meshio writes a Medit section per cell block; bodt.Mesh.read appends repeated sections in file order."""
-
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.addCleanup(self.tmp.cleanup)
-
-    def path(self, name: str) -> str:
-        return os.path.join(self.tmp.name, name)
 
     def test_two_blocks_of_tets_and_of_triangles(self):
         """Two tetra and two triangle blocks with medit:ref, as .mesh and .meshb: regions and markers by block."""
