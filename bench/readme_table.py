@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""The README's results tables from bench/run's JSON lines.
+"""The results tables of docs/results.md from bench/run's JSON lines (the
+first, the bench set against the peers, is also README.md's).
 
 usage: /usr/bin/python3 bench/readme_table.py bench/results/latest.jsonl [SCALE.jsonl ...]
 

@@ -2,7 +2,7 @@
 # Refreshes the ABI baseline, tests/consumers/libbodt.abi (the functions and
 # types, from a built libbodt.so) and tests/consumers/libbodt.constants (the
 # enum and macro values of include/bodt.h), on purpose: at a release, or with a deliberate ABI change that
-# CHANGELOG.md records (see README, "ABI and SONAME").  The CTest test
+# CHANGELOG.md records (see docs/api.md, "ABI and SONAME in detail").  The CTest test
 # consumers.abi compares every build with this baseline.
 #
 #   bash scripts/update-abi-baseline.sh [BUILD_DIR]     (default: build)

@@ -12,7 +12,7 @@
 # Anything else (a function removed or changed, a struct's layout changed, an
 # enum value changed or removed, another SONAME) fails.  If the change is
 # meant, refresh the baseline on purpose: scripts/update-abi-baseline.sh (see
-# README, "ABI and SONAME").
+# docs/api.md, "ABI and SONAME in detail").
 set -uo pipefail
 lib=$1 header=$2 baseline=$3 constants=$4 cc=${5:-cc}
 headers=$(dirname "$header")
