@@ -438,7 +438,7 @@ void test_model(void** /*state*/) {
         CHECK(per_dim[0] == 12 && per_dim[1] == 20 && per_dim[2] == 11 && per_dim[3] == 2, "entities %d %d %d %d",
               per_dim[0], per_dim[1], per_dim[2], per_dim[3]);
         const bodt::GmshEntity* s5 = model_entity(m, 2, 5);
-        CHECK(s5 && s5->physicals == std::vector<int32_t>{10} && s5->key == 10 &&
+        CHECK(s5 && s5->physicals == std::vector<int32_t>{10} && m.key(*s5) == 10 &&
                   s5->bounding == (std::vector<int32_t>{4, 11, -8, -9}) && s5->has_box && s5->box[5] < 1e-6,
               "surface 5");
         const bodt::GmshEntity* p2 = model_entity(m, 0, 2);
@@ -480,8 +480,8 @@ void test_model(void** /*state*/) {
         const bodt::GmshModel& m = *d.gmsh;
         CHECK(m.names.empty() && m.entity_keyed[3] && m.entity_keyed[2] && !m.entity_keyed[1], "entity keyed");
         for (const bodt::GmshEntity& e : m.entities)
-            CHECK(e.physicals.empty() && e.key == (e.dim >= 2 ? e.tag : 0), "entity (%d, %d) key %d", e.dim, e.tag,
-                  e.key);
+            CHECK(e.physicals.empty() && m.key(e) == (e.dim >= 2 ? e.tag : 0), "entity (%d, %d) key %d", e.dim, e.tag,
+                  m.key(e));
         CHECK(m.points.size() == 12 && m.triangle_entity.size() == 44 && m.line_entity.size() == 20,
               "%zu points, %zu triangles, %zu lines", m.points.size(), m.triangle_entity.size(),
               m.line_entity.size());
@@ -577,9 +577,14 @@ bool named(const bodt::GmshLayout& l, int dim, int32_t tag, const std::string& n
 // A vertex made by a step, with its parents (1-based tags, as in box41.msh).
 int32_t add_made_vertex(MeshData& d, std::initializer_list<std::pair<int32_t, double>> parents) {
     MeshData::Origins& o = d.origins;
-    if (o.parent_offsets.empty()) {
+    if (o.parent_offsets.empty()) {  // the input vertices stand for themselves
         o.input_vertices = static_cast<int32_t>(d.xyz.size() / 3);
         o.parent_offsets.push_back(0);
+        for (int32_t v = 0; v < o.input_vertices; ++v) {
+            o.parents.push_back(v);
+            o.weights.push_back(1.0);
+            o.parent_offsets.push_back(v + 1);
+        }
     }
     double p[3] = {0, 0, 0};
     for (const auto& [tag, w] : parents) {

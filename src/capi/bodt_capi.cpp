@@ -195,25 +195,56 @@ void fill_step_report(const bodt::StepReport& r, bodt_step_report* out) {
     fill_sized(out, full);
 }
 
-// The Gmsh model of the file the mesh was read from, with what the Gmsh
-// writer needs to put the elements back into its entities: the parents of
-// the made vertices and the input tet of each tet, by the caller's indices
-// (as bodt_mesh_get_vertex_parents and bodt_mesh_get_tet_origins give them).
-void add_origins(const bodt::TetMesh& mesh, const std::shared_ptr<const bodt::GmshModel>& model,
-                 bodt::MeshData& d) {
-    d.gmsh = model;
+// The number of parent entries of all vertices: one for each input vertex
+// (itself), those of each made vertex.
+size_t parent_count(const bodt::TetMesh& m) {
+    size_t n = static_cast<size_t>(m.num_input_vertices());
+    for (const bodt::Parents& p : m.new_parents) n += p.size();
+    return n;
+}
+
+// The parents of every vertex by the caller's indices, counted from `base`:
+// vertex c stands for parents[offsets[c] .. offsets[c + 1]) with those
+// weights, an input vertex for itself with weight 1.  `offsets` holds
+// num_vertices() + 1 entries, `parents` and `weights` parent_count() each.
+void caller_parents(const bodt::TetMesh& m, int base, int64_t* offsets, int32_t* parents, double* weights) {
+    const int32_t input = m.num_input_vertices();
+    size_t k = 0;
+    for (int32_t c = 0; c < m.num_vertices(); ++c) {  // by the caller's index: made vertices are the last
+        offsets[c] = static_cast<int64_t>(k);
+        if (c < input) {
+            parents[k] = c + base;
+            weights[k++] = 1.0;
+            continue;
+        }
+        for (const bodt::Parent& p : m.new_parents[static_cast<size_t>(c - input)]) {
+            parents[k] = m.caller_vertex(p.vertex) + base;
+            weights[k++] = p.weight;
+        }
+    }
+    offsets[m.num_vertices()] = static_cast<int64_t>(k);
+}
+
+// The input tet each tet came from, by the caller's indices, from `base`.
+void caller_tet_origins(const bodt::TetMesh& m, int base, int32_t* origins) {
+    for (int32_t t = 0; t < m.num_tets(); ++t) origins[m.caller_tet(t)] = m.caller_origin(t) + base;
+}
+
+// For a .msh: the Gmsh model of the file the mesh was read from, with what
+// the Gmsh writer needs to put the elements back into its entities, the
+// parents of the vertices and the input tet of each tet (from 0).  Only
+// Gmsh writes take it: the other formats have no place for it.
+void add_gmsh_model(const bodt_mesh* h, bodt::MeshData& d) {
+    const bodt::TetMesh& mesh = h->mesh;
+    d.gmsh = h->gmsh_model;
     bodt::MeshData::Origins& o = d.origins;
     o.input_vertices = mesh.num_input_vertices();
-    o.parent_offsets.push_back(0);
-    for (int32_t c = o.input_vertices; c < mesh.num_vertices(); ++c) {  // made vertices: the last, by caller index
-        for (const bodt::Parent& p : mesh.new_parents[static_cast<size_t>(c - o.input_vertices)]) {
-            o.parents.push_back(mesh.caller_vertex(p.vertex));
-            o.weights.push_back(p.weight);
-        }
-        o.parent_offsets.push_back(static_cast<int64_t>(o.parents.size()));
-    }
+    o.parent_offsets.resize(mesh.points.size() + 1);
+    o.parents.resize(parent_count(mesh));
+    o.weights.resize(o.parents.size());
+    caller_parents(mesh, 0, o.parent_offsets.data(), o.parents.data(), o.weights.data());
     o.tet_origins.resize(mesh.tets.size());
-    for (int32_t t = 0; t < mesh.num_tets(); ++t) o.tet_origins[mesh.caller_tet(t)] = mesh.caller_origin(t);
+    caller_tet_origins(mesh, 0, o.tet_origins.data());
 }
 
 // The mesh as the caller numbers it, for a file.
@@ -243,7 +274,6 @@ bodt::MeshData to_mesh_data(const bodt_mesh* h) {
         d.vertex_refs.resize(mesh.points.size());
         to_caller_vertices(mesh, mesh.vertex_refs(), d.vertex_refs.data());
     }
-    if (h->gmsh_model) add_origins(mesh, h->gmsh_model, d);
     return d;
 }
 
@@ -518,10 +548,7 @@ int bodt_mesh_get_vertex_classes(const bodt_mesh* mesh, int32_t* classes, size_t
 int bodt_mesh_get_parent_count(const bodt_mesh* mesh, int64_t* count) {
     return with_mesh(mesh, [&] {
         require(count != nullptr, "count is NULL");
-        const bodt::TetMesh& m = mesh->mesh;
-        int64_t n = m.num_input_vertices();
-        for (const bodt::Parents& p : m.new_parents) n += static_cast<int64_t>(p.size());
-        *count = n;
+        *count = static_cast<int64_t>(parent_count(mesh->mesh));
     });
 }
 
@@ -530,35 +557,17 @@ int bodt_mesh_get_vertex_parents(const bodt_mesh* mesh, int64_t* offsets, size_t
     return with_mesh(mesh, [&] {
         require(offsets != nullptr && parents != nullptr && weights != nullptr, "offsets, parents or weights is NULL");
         const bodt::TetMesh& m = mesh->mesh;
-        const int32_t input = m.num_input_vertices();
         require_capacity(offsets_capacity, m.points.size() + 1, "offsets");
-        size_t total = static_cast<size_t>(input);
-        for (const bodt::Parents& p : m.new_parents) total += p.size();
-        require_capacity(capacity, total, "parents");
-        const int base = mesh->index_base;
-        size_t k = 0;
-        for (int32_t c = 0; c < m.num_vertices(); ++c) {  // by the caller's index: made vertices are the last
-            offsets[c] = static_cast<int64_t>(k);
-            if (c < input) {
-                parents[k] = c + base;
-                weights[k++] = 1.0;
-                continue;
-            }
-            for (const bodt::Parent& p : m.new_parents[c - input]) {
-                parents[k] = m.caller_vertex(p.vertex) + base;
-                weights[k++] = p.weight;
-            }
-        }
-        offsets[m.num_vertices()] = static_cast<int64_t>(k);
+        require_capacity(capacity, parent_count(m), "parents");
+        caller_parents(m, mesh->index_base, offsets, parents, weights);
     });
 }
 
 int bodt_mesh_get_tet_origins(const bodt_mesh* mesh, int32_t* origins, size_t capacity) {
     return with_mesh(mesh, [&] {
         require(origins != nullptr, "origins is NULL");
-        const bodt::TetMesh& m = mesh->mesh;
-        require_capacity(capacity, m.tets.size(), "origins");
-        for (int32_t t = 0; t < m.num_tets(); ++t) origins[m.caller_tet(t)] = m.caller_origin(t) + mesh->index_base;
+        require_capacity(capacity, mesh->mesh.tets.size(), "origins");
+        caller_tet_origins(mesh->mesh, mesh->index_base, origins);
     });
 }
 
@@ -713,6 +722,7 @@ int bodt_mesh_write_format(const bodt_mesh* mesh, const char* path, int format) 
         const bodt::MeshFormat f = bodt::format_from_code(format, path);
         bodt::MeshData data = to_mesh_data(mesh);
         if (f == bodt::MeshFormat::Vtu || f == bodt::MeshFormat::Vtk) add_quality_fields(mesh->mesh, data);
+        if (mesh->gmsh_model && bodt::is_gmsh(f)) add_gmsh_model(mesh, data);
         bodt::write_mesh_file(path, data, f);
     });
 }

@@ -29,8 +29,8 @@ struct bodt_mesh {
     int index_base = 0;
     bool flipped = false;
     // The structure of the Gmsh file the mesh was read from (names,
-    // entities), kept unchanged for writing it back (io/gmsh_model.hpp);
-    // null for any other source.
+    // entities), kept unchanged for writing it back to a .msh
+    // (io/gmsh_model.hpp; other formats ignore it); null for any other source.
     std::shared_ptr<const bodt::GmshModel> gmsh_model;
     mutable std::string last_error;
 };

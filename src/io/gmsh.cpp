@@ -11,6 +11,7 @@
 
 #include "bodt.h"
 #include "common/error.hpp"
+#include "mesh/element_keys.hpp"
 
 #include <algorithm>
 #include <array>
@@ -24,7 +25,6 @@
 #include <memory>
 #include <set>
 #include <string_view>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -790,8 +790,6 @@ private:
         finish_triangles();
         finish_lines();
         finish_points();
-        for (GmshEntity& e : model_.entities)
-            e.key = model_.entity_keyed[e.dim] ? e.tag : (e.physicals.empty() ? 0 : e.physicals.front());
         model_.node_entity = std::move(node_block_entity_);
         d_.gmsh = std::make_shared<const GmshModel>(std::move(model_));
     }
@@ -846,11 +844,10 @@ private:
     // ref).
     void finish_lines() {
         Elements& e = elements_[1];
-        std::unordered_set<uint64_t> seen;
+        EdgeSet seen;
         for (size_t k = 0; k < e.entity.size(); ++k) {
             const int32_t* v = &e.vertices[2 * k];
-            const auto [lo, hi] = std::minmax(v[0], v[1]);
-            if (!seen.insert(uint64_t{static_cast<uint32_t>(lo)} << 32 | static_cast<uint32_t>(hi)).second) continue;
+            if (!seen.insert(edge_key(v[0], v[1])).second) continue;
             d_.feature_edges.insert(d_.feature_edges.end(), v, v + 2);
             d_.edge_refs.push_back(e.physical[k]);
             model_.line_entity.push_back(e.entity[k]);
@@ -1192,7 +1189,7 @@ void check_for_writing(const MeshData& d) {
     if (!o.tet_origins.empty() && o.tet_origins.size() != d.tets.size() / 4) bad("one origin per tet expected");
     if (o.parent_offsets.empty()) return;
     if (o.input_vertices < 0 || o.input_vertices > nv ||
-        o.parent_offsets.size() != static_cast<size_t>(nv - o.input_vertices) + 1 || o.parent_offsets.front() != 0 ||
+        o.parent_offsets.size() != static_cast<size_t>(nv) + 1 || o.parent_offsets.front() != 0 ||
         static_cast<size_t>(o.parent_offsets.back()) != o.parents.size() || o.weights.size() != o.parents.size() ||
         !std::is_sorted(o.parent_offsets.begin(), o.parent_offsets.end()))
         bad("vertex parents that do not fit the vertices");

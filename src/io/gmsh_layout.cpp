@@ -1,6 +1,8 @@
 // Puts each element to be written into a Gmsh entity; see gmsh_layout.hpp.
 #include "io/gmsh_layout.hpp"
 
+#include "mesh/element_keys.hpp"
+
 #include <algorithm>
 #include <climits>
 #include <memory>
@@ -8,7 +10,6 @@
 #include <set>
 #include <string>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 namespace bodt {
@@ -17,40 +18,20 @@ namespace {
 
 constexpr int32_t kNone = -1;
 
-uint64_t edge_key(int32_t a, int32_t b) {
-    const auto [lo, hi] = std::minmax(a, b);
-    return uint64_t{static_cast<uint32_t>(lo)} << 32 | static_cast<uint32_t>(hi);
-}
-
-using TriangleKey = std::array<int32_t, 3>;
-
-TriangleKey triangle_key(int32_t a, int32_t b, int32_t c) {
-    TriangleKey k{a, b, c};
-    std::sort(k.begin(), k.end());
-    return k;
-}
-
-struct TriangleHash {
-    size_t operator()(const TriangleKey& k) const {
-        uint64_t h = 0;
-        for (const int32_t v : k) h = (h ^ static_cast<uint32_t>(v)) * 0x100000001b3ull;
-        return static_cast<size_t>(h ^ (h >> 29));
-    }
-};
-
 // The input vertices a vertex stands for, with weights: an input vertex is
-// its own, a made vertex has its parents (MeshData::Origins).
+// its own, a made vertex has its parents (MeshData::Origins); without
+// origins every vertex is an input vertex.
 class Parentage {
 public:
     explicit Parentage(const MeshData::Origins& o) : o_(o) {}
 
     template <class F>
     void each(int32_t v, F&& f) const {
-        if (o_.parent_offsets.empty() || v < o_.input_vertices) {
+        if (o_.parent_offsets.empty()) {
             f(v, 1.0);
             return;
         }
-        const auto k = static_cast<size_t>(v - o_.input_vertices);
+        const auto k = static_cast<size_t>(v);
         for (int64_t i = o_.parent_offsets[k]; i < o_.parent_offsets[k + 1]; ++i)
             f(o_.parents[static_cast<size_t>(i)], o_.weights[static_cast<size_t>(i)]);
     }
@@ -93,7 +74,8 @@ public:
     explicit Builder(const MeshData& d) : d_(d), parentage_(d.origins) {
         nv_ = d.xyz.size() / 3;
         const size_t input = d.origins.parent_offsets.empty() ? nv_ : static_cast<size_t>(d.origins.input_vertices);
-        if (d.gmsh && d.gmsh->fits(input)) m_ = d.gmsh.get();
+        if (!d.gmsh || !d.gmsh->fits(input)) return;
+        m_ = d.gmsh.get();
         used_.assign(nv_, 0);
         for (const int32_t v : d.tets) used_[vertex(v)] = 1;
     }
@@ -143,7 +125,7 @@ private:
                 if (e != kNone) held_[static_cast<size_t>(e)] = 1;
         for (size_t k = 0; k < m_->triangle_entity.size(); ++k) {
             const int32_t* v = &m_->triangles[3 * k];
-            input_triangles_.emplace(triangle_key(v[0], v[1], v[2]), m_->triangle_entity[k]);
+            input_triangles_.emplace(FaceKey::of(v[0], v[1], v[2]), m_->triangle_entity[k]);
         }
         for (size_t k = 0; k < m_->line_entity.size(); ++k)
             input_lines_.emplace(edge_key(m_->lines[2 * k], m_->lines[2 * k + 1]), m_->line_entity[k]);
@@ -154,14 +136,14 @@ private:
     // is its key, or one of its physical tags where those are the values.
     bool accepts(int32_t e, int32_t r) const {
         const GmshEntity& entity = m_->entities[static_cast<size_t>(e)];
-        if (entity.key == r) return true;
+        if (m_->key(entity) == r) return true;
         return !m_->entity_keyed[entity.dim] && r != 0 &&
                std::find(entity.physicals.begin(), entity.physicals.end(), r) != entity.physicals.end();
     }
 
     // The model entities of `dim` that take value r, in the model's order;
     // for r = 0 (no physical group) only those that held elements.
-    const std::vector<int32_t>& candidates(int dim, int32_t r) {
+    const std::vector<int32_t>& candidates(int dim, int32_t r) const {
         static const std::vector<int32_t> none;
         const auto it = candidates_.find({dim, r});
         return it == candidates_.end() ? none : it->second;
@@ -171,7 +153,7 @@ private:
         for (size_t k = 0; k < m_->entities.size(); ++k) {
             const GmshEntity& e = m_->entities[k];
             const auto index = static_cast<int32_t>(k);
-            std::set<int32_t> values{e.key};
+            std::set<int32_t> values{m_->key(e)};
             if (!m_->entity_keyed[e.dim])
                 for (const int32_t p : e.physicals)
                     if (p != 0) values.insert(p);
@@ -272,9 +254,9 @@ private:
             const int32_t* v = &d_.triangles[3 * f];
             int32_t e = kNone;
             if (m_) {
-                const auto it = input_triangles_.find(triangle_key(static_cast<int32_t>(vertex(v[0])),
-                                                                  static_cast<int32_t>(vertex(v[1])),
-                                                                  static_cast<int32_t>(vertex(v[2]))));
+                const auto it = input_triangles_.find(FaceKey::of(static_cast<int32_t>(vertex(v[0])),
+                                                                 static_cast<int32_t>(vertex(v[1])),
+                                                                 static_cast<int32_t>(vertex(v[2]))));
                 if (it != input_triangles_.end() && it->second != kNone && accepts(it->second, r))
                     e = it->second;
                 else if (!candidates(2, r).empty())
@@ -327,12 +309,12 @@ private:
     // Fixed vertices, then the model's point elements without a physical
     // group whose vertex is still in a tet.
     void place_points() {
-        std::multimap<int32_t, int32_t> physical_points;  // vertex -> a model point entity with a physical tag
+        std::map<int32_t, int32_t> physical_points;  // vertex -> the first model point entity with a physical tag
         std::set<std::pair<int32_t, int32_t>> written;
         if (m_)
             for (size_t k = 0; k < m_->points.size(); ++k) {
                 const int32_t e = m_->point_entity[k];
-                if (e != kNone && m_->entities[static_cast<size_t>(e)].key != 0)
+                if (e != kNone && m_->key(m_->entities[static_cast<size_t>(e)]) != 0)
                     physical_points.emplace(m_->points[k], e);
             }
         for (const int32_t f : d_.fixed) {
@@ -346,7 +328,8 @@ private:
         if (!m_) return;
         for (size_t k = 0; k < m_->points.size(); ++k) {
             const int32_t v = m_->points[k], e = m_->point_entity[k];
-            if (e == kNone || m_->entities[static_cast<size_t>(e)].key != 0 || !used_[static_cast<size_t>(v)]) continue;
+            if (e == kNone || m_->key(m_->entities[static_cast<size_t>(e)]) != 0 || !used_[static_cast<size_t>(v)])
+                continue;
             if (written.insert({v, e}).second) add_point(v, e);
         }
     }
@@ -360,7 +343,8 @@ private:
         for (size_t k = 0; k < n; ++k) order[k] = static_cast<int32_t>(k);
         std::stable_sort(order.begin(), order.end(),
                          [&](int32_t a, int32_t b) { return out_.entities[a].dim < out_.entities[b].dim; });
-        std::vector<int32_t> moved_to(n);
+        std::vector<int32_t>& moved_to = model_to_layout_;
+        moved_to.resize(n);
         std::vector<GmshLayout::Entity> entities(n);
         std::vector<uint8_t> computed(n);
         for (size_t k = 0; k < n; ++k) {
@@ -370,7 +354,6 @@ private:
         }
         out_.entities = std::move(entities);
         computed_box_ = std::move(computed);
-        model_to_layout_ = moved_to;
         for (auto& of_dim : out_.element_entity)
             for (size_t k = 0; k < of_dim.size(); ++k) {
                 int32_t& e = of_dim[k];
@@ -484,16 +467,16 @@ private:
     const GmshModel* m_ = nullptr;  // the file's model, if it fits the mesh
     Parentage parentage_;
     size_t nv_ = 0;
-    std::vector<uint8_t> used_;  // per vertex: in a tet
+    std::vector<uint8_t> used_;  // per vertex: in a tet (with a model only: for its point elements)
     GmshLayout out_;
     std::vector<uint8_t> computed_box_;  // per entity: its box from its elements (not the model's)
     std::vector<uint8_t> held_;          // per model entity: it held elements in the model
-    std::vector<int32_t> model_to_layout_;  // entity index before order_by_dimension -> after
+    std::vector<int32_t> model_to_layout_;  // entity index before order_by_dimension (the model's first) -> after
     std::set<int32_t> tags_[4];             // the entity tags taken, per dimension
     std::map<std::pair<int, int32_t>, std::vector<int32_t>> candidates_;
     std::map<std::pair<int, int32_t>, int32_t> made_;  // (dim, value) -> new entity
-    std::unordered_map<TriangleKey, int32_t, TriangleHash> input_triangles_;
-    std::unordered_map<uint64_t, int32_t> input_lines_;
+    std::unordered_map<FaceKey, int32_t, FaceKeyHash> input_triangles_;  // input triangle -> its entity
+    std::unordered_map<EdgeKey, int32_t> input_lines_;                  // input line -> its entity
     std::unique_ptr<Membership> membership_[3];
     int32_t fixed_group_ = 0;
 };

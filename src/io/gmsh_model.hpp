@@ -20,11 +20,6 @@ namespace bodt {
 struct GmshEntity {
     int dim = 0;
     int32_t tag = 0;
-    // The region, face marker, edge ref or (dim 0) physical tag its
-    // elements were read with: its first physical tag (0 without any), or
-    // its tag where the reader took entity tags instead (GmshModel::
-    // entity_keyed).
-    int32_t key = 0;
     std::vector<int32_t> physicals;  // all of them, in the file's order
     std::vector<int32_t> bounding;   // 4.1: the bounding entities (signed tags)
     // Min x, y, z, then max x, y, z (a point: its coordinates twice), when
@@ -55,6 +50,14 @@ struct GmshModel {
     std::vector<int32_t> point_entity;
     // 4.1: the entity of each vertex's node block; empty for 2.2.
     std::vector<int32_t> node_entity;
+
+    // The region, face marker, edge ref or (dim 0) physical tag the
+    // elements of `e` were read with: its first physical tag (0 without
+    // any), or its tag where the reader took entity tags instead.
+    int32_t key(const GmshEntity& e) const {
+        if (entity_keyed[static_cast<size_t>(e.dim)]) return e.tag;
+        return e.physicals.empty() ? 0 : e.physicals.front();
+    }
 
     // Every index in range for a mesh of `input_vertices` input vertices,
     // every element's entity of the element's dimension: a model that does

@@ -36,16 +36,18 @@ struct MeshData {
     std::vector<TetField> tet_fields;
     // What a Gmsh file holds beyond these arrays (names, entities, the
     // entity of each element), from read_gmsh; null for other sources.
-    // write_gmsh writes the mesh back into those entities.
+    // write_gmsh writes the mesh back into those entities; other writers
+    // ignore it, and the C API hands it (and the origins) to Gmsh writes only.
     std::shared_ptr<const GmshModel> gmsh;
     // Where the vertices and tets came from when the mesh is the one read
-    // after steps that changed its connectivity (the C API fills it for
-    // write_gmsh).  Vertex indices count from 0.
+    // after steps that changed its connectivity, for write_gmsh to place
+    // the elements into the model's entities.  Vertex indices count from 0.
     struct Origins {
         // Without parent offsets every vertex is an input vertex; with them,
-        // vertices from `input_vertices` on were made by steps, made vertex
-        // k from the input vertices parents[offsets[k] .. offsets[k + 1])
-        // with those weights.
+        // vertices from `input_vertices` on were made by steps, and vertex v
+        // stands for the input vertices parents[offsets[v] .. offsets[v + 1])
+        // with those weights (an input vertex for itself, weight 1), as
+        // bodt_mesh_get_vertex_parents gives them.
         int32_t input_vertices = 0;
         std::vector<int64_t> parent_offsets;
         std::vector<int32_t> parents;
@@ -68,6 +70,12 @@ enum class MeshFormat {
     Abaqus = 9,        // .inp (write only)
     Vtk = 10           // .vtk (VTK legacy)
 };
+
+// The .msh variants: those that MeshData::gmsh and ::origins are for.
+inline bool is_gmsh(MeshFormat f) {
+    return f == MeshFormat::Gmsh || f == MeshFormat::GmshBinary || f == MeshFormat::Gmsh22 ||
+           f == MeshFormat::Gmsh22Binary;
+}
 
 // By extension: .mesh, .meshb, .node/.ele, .msh, .vtu, .vtk, .inp.  Throws
 // Error(BODT_ERR_UNSUPPORTED) for anything else.

@@ -11,13 +11,6 @@
 
 namespace bodt {
 
-FaceKey FaceKey::of(int32_t a, int32_t b, int32_t c) {
-    if (a > b) std::swap(a, b);
-    if (b > c) std::swap(b, c);
-    if (a > b) std::swap(a, b);
-    return {{a, b, c}};
-}
-
 namespace {
 
 std::array<int32_t, 3> face_of(const Tet& t, int i) {

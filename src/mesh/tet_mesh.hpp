@@ -11,6 +11,7 @@
 #pragma once
 
 #include "mesh/curve_order.hpp"
+#include "mesh/element_keys.hpp"
 #include "quality/tet_geometry.hpp"
 
 #include <array>
@@ -31,34 +32,6 @@ using Tet = std::array<int32_t, 4>;
 // v is a vertex of q (without branches: the adjacency scans test this for
 // every tet of a star).
 inline bool holds(const Tet& q, int32_t v) { return (q[0] == v) | (q[1] == v) | (q[2] == v) | (q[3] == v); }
-
-// A face by its three vertex indices, sorted ascending.
-struct FaceKey {
-    std::array<int32_t, 3> v;
-    static FaceKey of(int32_t a, int32_t b, int32_t c);
-    bool operator==(const FaceKey& o) const { return v == o.v; }
-    bool operator<(const FaceKey& o) const { return v < o.v; }
-};
-
-struct FaceKeyHash {
-    size_t operator()(const FaceKey& k) const {
-        uint64_t h = static_cast<uint32_t>(k.v[0]);
-        h = h * 0x9E3779B97F4A7C15ull ^ static_cast<uint32_t>(k.v[1]);
-        h = h * 0x9E3779B97F4A7C15ull ^ static_cast<uint32_t>(k.v[2]);
-        return static_cast<size_t>(h ^ (h >> 29));
-    }
-};
-
-// An undirected edge as (smaller, larger) vertex index in one integer.
-using EdgeKey = uint64_t;
-inline EdgeKey edge_key(int32_t a, int32_t b) {
-    if (a > b) std::swap(a, b);
-    return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
-}
-inline int32_t edge_first(EdgeKey k) { return static_cast<int32_t>(k >> 32); }
-inline int32_t edge_second(EdgeKey k) { return static_cast<int32_t>(k & 0xffffffffu); }
-using EdgeSet = std::unordered_set<EdgeKey>;
-using EdgeRefs = std::unordered_map<EdgeKey, int32_t>;  // an edge and its reference number
 
 enum VertexFlag : uint8_t {
     kOnBoundary = 1,   // on a face of one tet
